@@ -1,0 +1,175 @@
+#include "linter.h"
+
+#include <algorithm>
+#include <set>
+#include <tuple>
+
+namespace rrflint {
+
+std::string_view severity_name(Severity s) {
+  switch (s) {
+    case Severity::Error: return "error";
+    case Severity::Warning: return "warning";
+    case Severity::Info: return "info";
+  }
+  return "?";
+}
+
+std::optional<Severity> parse_severity(std::string_view s) {
+  std::string l = to_lower(s);
+  if (l == "error") return Severity::Error;
+  if (l == "warning") return Severity::Warning;
+  if (l == "info") return Severity::Info;
+  return std::nullopt;
+}
+
+std::string_view applicability_name(Applicability a) { return a == Applicability::Safe ? "safe" : "unsafe"; }
+
+std::vector<const Rule*> enabled_rules(const LintOptions& o, std::vector<std::string>* errors) {
+  const auto& all = all_rules();
+  std::set<const Rule*> on;
+  auto add = [&](const std::vector<std::string>& names, bool insert) {
+    for (const std::string& n : names) {
+      if (to_lower(n) == "all") {
+        for (const Rule* r : all) insert ? (void)on.insert(r) : (void)on.erase(r);
+        continue;
+      }
+      // A code prefix such as "RRF3" selects a whole family.
+      std::vector<const Rule*> hit;
+      if (const Rule* r = find_rule(n)) hit.push_back(r);
+      else if (n.size() >= 4 && to_lower(n).starts_with("rrf"))
+        for (const Rule* r : all)
+          if (to_lower(r->meta.code).starts_with(to_lower(n))) hit.push_back(r);
+      if (hit.empty()) {
+        if (errors) errors->push_back(n);
+        continue;
+      }
+      for (const Rule* r : hit) insert ? (void)on.insert(r) : (void)on.erase(r);
+    }
+  };
+  if (o.select.empty()) {
+    for (const Rule* r : all)
+      if (r->meta.default_enabled) on.insert(r);
+  } else {
+    add(o.select, true);
+  }
+  add(o.extend_select, true);
+  add(o.ignore, false);
+  std::vector<const Rule*> out;
+  for (const Rule* r : all)
+    if (on.count(r)) out.push_back(r);
+  return out;
+}
+
+size_t apply_edits(std::string& text, std::vector<Edit> edits) {
+  std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+    return std::tie(a.loc.span.begin, a.loc.span.end) < std::tie(b.loc.span.begin, b.loc.span.end);
+  });
+  std::string out;
+  out.reserve(text.size() + 64);
+  uint32_t pos = 0;
+  size_t applied = 0;
+  bool any = false;
+  uint32_t last_end = 0;
+  for (const Edit& e : edits) {
+    if (e.loc.span.end > text.size() || e.loc.span.begin > e.loc.span.end) continue;
+    if (any && e.loc.span.begin < last_end) continue;  // overlaps: left for the next round
+    if (any && e.loc.span.begin == last_end && e.loc.span.empty() && last_end == pos && false) continue;
+    out.append(text, pos, e.loc.span.begin - pos);
+    out += e.replacement;
+    pos = e.loc.span.end;
+    last_end = e.loc.span.end;
+    any = true;
+    ++applied;
+  }
+  out.append(text, pos, std::string::npos);
+  text = std::move(out);
+  return applied;
+}
+
+MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options) {
+  MachineResult res;
+  res.machine = std::make_unique<Machine>(sources, reader);
+  Machine& m = *res.machine;
+  const std::vector<const Rule*> rules = enabled_rules(options);
+
+  // 1. Load and parse every file of the machine.
+  const FileUnit* config = m.load(options.sys_dir + "/config.g");
+  if (!config) config = m.load(options.sys_dir + "/config.g.bak");
+  {
+    std::vector<std::string> files = machine_files(reader, options.sys_dir);
+    m.set_listing(files);
+    if (options.include_entries)
+      for (const std::string& p : files) m.load(p);
+  }
+
+  // 2. The firmware target.
+  res.target = infer_target(m, config, options.firmware, options.board);
+
+  // 3. The ordered command graph.
+  GraphOptions go;
+  go.firmware = res.target.version;
+  go.sys_dir = options.sys_dir;
+  go.include_entries = options.include_entries;
+  res.graph = build_graph(m, go);
+
+  Sink sink;
+  // 4. Per-file rules, on every file loaded (including those the graph reached).
+  for (uint32_t i = 0; i < m.unit_count(); ++i) {
+    FileContext fc{m, m.unit(i), res.target, options};
+    for (const Rule* r : rules)
+      if (r->check_file) r->check_file(fc, sink);
+  }
+
+  // 5. The forward pass: boot, then every entry from the end-of-boot state.
+  ModelBuilder mb(m, res.graph, res.target.version, res.target.board);
+  std::vector<const Rule*> node_rules;
+  for (const Rule* r : rules)
+    if (r->check_node) node_rules.push_back(r);
+  MachineState boot_end = mb.initial_state();
+  bool have_boot = false;
+  for (const Segment& seg : res.graph.segments) {
+    MachineState s = seg.boot ? mb.initial_state() : boot_end;
+    if (!seg.boot && !have_boot) s.unknown_baseline = true;
+    for (NodeId id = seg.begin; id < seg.end; ++id) {
+      mb.decide(s, id);
+      const int runs = mb.runs(id);
+      if (runs > 0 && !node_rules.empty()) {
+        NodeContext nc{m, res.graph, res.target, options, s, id, runs};
+        for (const Rule* r : node_rules) r->check_node(nc, sink);
+      }
+      mb.step(s, id);
+    }
+    if (seg.boot) {
+      boot_end = s;
+      have_boot = true;
+    }
+  }
+  res.end_of_boot = boot_end;
+  res.has_boot = have_boot;
+  {
+    EndContext ec{m, res.graph, res.target, options, boot_end};
+    for (const Rule* r : rules)
+      if (r->check_end) r->check_end(ec, sink);
+  }
+
+  // 6. Severity overrides, de-duplication (a macro run twice reports once), order.
+  auto& out = res.diagnostics;
+  for (Diagnostic& d : sink.diagnostics()) {
+    if (auto it = options.severity.find(std::string(d.code)); it != options.severity.end()) d.severity = it->second;
+    out.push_back(std::move(d));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.loc.file, a.loc.span.begin, a.code, a.loc.span.end) <
+           std::tie(b.loc.file, b.loc.span.begin, b.code, b.loc.span.end);
+  });
+  out.erase(std::unique(out.begin(), out.end(),
+                        [](const Diagnostic& a, const Diagnostic& b) {
+                          return a.code == b.code && a.loc.file == b.loc.file && a.loc.span == b.loc.span &&
+                                 a.message == b.message;
+                        }),
+            out.end());
+  return res;
+}
+
+}  // namespace rrflint

@@ -1,0 +1,50 @@
+// The linting pipeline for one machine: load and parse files -> infer the target -> build the graph ->
+// one forward pass of the model with the enabled rules -> sorted, de-duplicated diagnostics.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "diagnostic.h"
+#include "graph.h"
+#include "infer.h"
+#include "model.h"
+#include "project.h"
+#include "rule.h"
+
+namespace rrflint {
+
+struct LintOptions {
+  std::optional<Version> firmware;
+  std::optional<Board> board;
+  std::vector<std::string> select;         // codes or names; "ALL"; empty = the default set
+  std::vector<std::string> extend_select;  // added to the selection
+  std::vector<std::string> ignore;
+  std::map<std::string, Severity> severity;  // per-rule override, by code
+  bool tool_changer = false;                 // machine.tool-changer: evidence for RRF305
+  bool include_entries = true;               // lint every other macro as its own entry
+  std::string sys_dir = "/sys";
+};
+
+/// Which rules are on, after select/extend/ignore. Unknown names go to `errors`.
+std::vector<const Rule*> enabled_rules(const LintOptions& o, std::vector<std::string>* errors = nullptr);
+
+struct MachineResult {
+  std::unique_ptr<Machine> machine;
+  Target target;
+  Graph graph;
+  MachineState end_of_boot;
+  bool has_boot = false;
+  std::vector<Diagnostic> diagnostics;  // sorted by file, position, code
+};
+
+/// Lints the machine that `reader` holds (SD paths: /sys/config.g, /macros/…).
+MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options);
+
+/// Applies edits to `text`, skipping any that overlap an earlier one. Returns how many were applied.
+size_t apply_edits(std::string& text, std::vector<Edit> edits);
+
+}  // namespace rrflint

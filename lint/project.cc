@@ -1,0 +1,130 @@
+#include "project.h"
+
+#include <algorithm>
+
+namespace rrflint {
+
+std::string to_lower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c + 32);
+  return r;
+}
+
+ReadResult MemoryReader::read(std::string_view sd_path) {
+  ReadResult r;
+  r.display = std::string(sd_path.substr(sd_path.starts_with("/") ? 1 : 0));
+  auto it = files_.find(std::string(sd_path));
+  if (it == files_.end()) {
+    const std::string want = to_lower(sd_path);
+    it = std::find_if(files_.begin(), files_.end(), [&](const auto& kv) { return to_lower(kv.first) == want; });
+  }
+  if (it == files_.end()) return r;
+  r.status = ReadResult::Status::Ok;
+  r.bytes = it->second;
+  r.sd_path = it->first;
+  r.display = it->first.substr(1);
+  return r;
+}
+
+std::vector<std::string> MemoryReader::list(std::string_view sd_dir) {
+  std::string prefix(sd_dir);
+  if (!prefix.ends_with("/")) prefix += '/';
+  std::vector<std::string> out;
+  for (const auto& [k, v] : files_)
+    if (to_lower(k).starts_with(to_lower(prefix))) out.push_back(k);
+  return out;
+}
+
+std::optional<std::string> resolve_sd_path(std::string_view dir, std::string_view name, bool* outside_root) {
+  if (outside_root) *outside_root = false;
+  std::string full;
+  if (name.size() >= 2 && name[0] >= '0' && name[0] <= '9' && name[1] == ':') {
+    if (name[0] != '0') return std::nullopt;  // another volume
+    name.remove_prefix(2);
+    full = name.starts_with("/") ? std::string(name) : "/" + std::string(name);
+  } else if (name.starts_with("/")) {
+    full = std::string(name);
+  } else {
+    full = std::string(dir);
+    if (!full.ends_with("/")) full += '/';
+    full += name;
+  }
+  std::vector<std::string_view> parts;
+  std::string_view rest = full;
+  while (!rest.empty()) {
+    size_t slash = rest.find('/');
+    std::string_view seg = rest.substr(0, slash);
+    rest = slash == std::string_view::npos ? std::string_view{} : rest.substr(slash + 1);
+    if (seg.empty() || seg == ".") continue;
+    if (seg == "..") {
+      if (parts.empty()) {
+        if (outside_root) *outside_root = true;
+        return std::nullopt;
+      }
+      parts.pop_back();
+      continue;
+    }
+    parts.push_back(seg);
+  }
+  std::string out;
+  for (auto p : parts) {
+    out += '/';
+    out += p;
+  }
+  return out.empty() ? std::string("/") : out;
+}
+
+bool looks_binary(std::string_view bytes) {
+  const size_t n = std::min<size_t>(bytes.size(), 8192);
+  size_t nul = 0, ctrl = 0;
+  for (size_t i = 0; i < n; ++i) {
+    unsigned char c = static_cast<unsigned char>(bytes[i]);
+    if (c == 0) ++nul;
+    else if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f') ++ctrl;
+  }
+  if (nul == 0) return false;
+  return nul + ctrl > n / 64 || nul > 16;
+}
+
+const FileUnit* Machine::load(std::string_view sd_path) {
+  const std::string key = to_lower(sd_path);
+  if (auto it = by_path_.find(key); it != by_path_.end()) return it->second < 0 ? nullptr : units_[it->second].get();
+  ReadResult r = reader_.read(sd_path);
+  if (r.status != ReadResult::Status::Ok) {
+    by_path_[key] = -1;
+    if (r.status == ReadResult::Status::Error) problems_.push_back({std::string(sd_path), r.display, r.error});
+    return nullptr;
+  }
+  if (looks_binary(r.bytes)) {
+    by_path_[key] = -1;
+    problems_.push_back({std::string(sd_path), r.display, "binary file (NUL bytes), not G-code: not linted"});
+    return nullptr;
+  }
+  if (r.bytes.size() >= UINT32_MAX - 1) {
+    by_path_[key] = -1;
+    problems_.push_back({std::string(sd_path), r.display, "file larger than 4 GiB: not linted"});
+    return nullptr;
+  }
+  auto u = std::make_unique<FileUnit>();
+  u->sd_path = r.sd_path.empty() ? std::string(sd_path) : r.sd_path;
+  u->source = &sources_.add(r.display, u->sd_path, std::move(r.bytes));
+  u->parsed = parse(*u->source);
+  u->index = static_cast<uint32_t>(units_.size());
+  by_path_[key] = static_cast<int32_t>(units_.size());
+  units_.push_back(std::move(u));
+  return units_.back().get();
+}
+
+void Machine::set_listing(const std::vector<std::string>& sd_paths) {
+  for (const auto& p : sd_paths) listing_[to_lower(p)] = true;
+}
+
+bool Machine::has_file(std::string_view sd_path) const {
+  const std::string key = to_lower(sd_path);
+  if (listing_.count(key)) return true;
+  auto it = by_path_.find(key);
+  return it != by_path_.end() && it->second >= 0;
+}
+
+}  // namespace rrflint

@@ -1,0 +1,222 @@
+// `rrflint model`: the machine model the boot sequence builds, as aligned tables or JSON.
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "../linter.h"
+#include "model_render.h"
+#include "render.h"
+
+namespace rrflint {
+namespace {
+
+std::string where(const MachineResult& r, const SourceManager& sm, NodeId id) {
+  if (id == kNoNode) return "default";
+  const Graph& g = r.graph;
+  const Node* n = &g.nodes[id];
+  while (n->kind != NodeKind::Command && n->call_site != kNoNode) n = &g.nodes[n->call_site];
+  const FileUnit& u = r.machine->unit(n->unit);
+  uint32_t off = n->kind == NodeKind::Command ? u.parsed.commands[n->index].span.begin : 0;
+  LineCol lc = sm.get(u.source->id()).position(off);
+  return fmt::format("{}:{}", sanitize(u.source->display_path()), lc.line);
+}
+
+std::string num(double v) {
+  std::string s = fmt::format("{:.3f}", v);
+  while (s.size() > 1 && s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+std::string fact(const Fact& f) { return f.known ? num(f.value) : "unknown"; }
+
+std::string ints(const std::vector<int64_t>& v) {
+  std::string s;
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ":" : "") + std::to_string(v[i]);
+  return s.empty() ? "-" : s;
+}
+
+std::string temps(const std::vector<double>& v) {
+  if (v.empty()) return "off";
+  std::string s;
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ":" : "") + num(v[i]);
+  return s;
+}
+
+std::string map_str(const MachineState& s, const AxisMap& m) { return m.known ? s.axis_letters(m.bits) : "unknown"; }
+
+std::string axis_name(const Axis& a) { return a.letter >= 'a' ? fmt::format("'{}", a.letter) : std::string(1, a.letter); }
+
+void table(std::ostream& os, const std::vector<std::vector<std::string>>& rows) {
+  if (rows.empty()) return;
+  std::vector<size_t> w(rows[0].size(), 0);
+  for (const auto& r : rows)
+    for (size_t i = 0; i < r.size(); ++i) w[i] = std::max<size_t>(w[i], count_code_points(r[i]));
+  for (const auto& r : rows) {
+    std::string line = "  ";
+    for (size_t i = 0; i < r.size(); ++i) {
+      line += r[i];
+      if (i + 1 < r.size()) line += std::string(w[i] - count_code_points(r[i]) + 2, ' ');
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    os << line << "\n";
+  }
+}
+
+}  // namespace
+
+void render_model_text(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
+  const MachineState& s = r.end_of_boot;
+  os << "Machine: " << title << "\n";
+  os << "Firmware: " << r.target.reason << "\n";
+  for (const Evidence& e : r.target.evidence) {
+    LineCol lc = sm.get(e.loc.file).position(e.loc.span.begin);
+    os << fmt::format("  evidence: {} ({}:{})\n", e.what, sanitize(sm.get(e.loc.file).display_path()), lc.line);
+  }
+  os << "Board: " << r.target.board_reason << "\n";
+  if (!r.has_boot) os << "No config.g: the model below is the power-on state.\n";
+  os << fmt::format("\nAxes ({} total, {} visible){}\n", s.axes.size(), s.visible_axes, s.axes_known ? "" : " (partly unknown)");
+  std::vector<std::vector<std::string>> rows{{"index", "axis", "drivers", "kind", "visible", "set at"}};
+  for (size_t i = 0; i < s.axes.size(); ++i) {
+    const Axis& a = s.axes[i];
+    std::string drv;
+    for (const auto& d : a.drivers) drv += (drv.empty() ? "" : ":") + d.str();
+    rows.push_back({std::to_string(i), axis_name(a), drv.empty() ? "unknown" : drv, a.rotational ? "rotational" : "linear",
+                    static_cast<int>(i) < s.visible_axes ? "yes" : "hidden",
+                    where(r, sm, a.drivers_set != kNoNode ? a.drivers_set : a.created) + (a.maybe ? " (maybe)" : "")});
+  }
+  table(os, rows);
+  os << fmt::format("\nExtruders: {}", s.extruders_known ? std::to_string(s.extruders) : "unknown");
+  if (!s.extruder_drivers.empty()) {
+    std::string drv;
+    for (size_t i = 0; i < s.extruder_drivers.size(); ++i) drv += fmt::format("{}E{}={}", i ? " " : "", i, s.extruder_drivers[i].str());
+    os << " (" << drv << ", " << where(r, sm, s.extruders_set) << ")";
+  }
+  os << "\n";
+  os << "\nSensors\n";
+  rows = {{"sensor", "type", "created at"}};
+  for (const auto& [n, sn] : s.sensors) rows.push_back({std::to_string(n), sn.type, where(r, sm, sn.created) + (sn.maybe ? " (maybe)" : "")});
+  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  os << "\nHeaters\n";
+  rows = {{"heater", "sensor", "over-temperature monitor", "model", "created at"}};
+  for (const auto& [n, h] : s.heaters) {
+    std::string mon = h.monitor_installed
+                          ? fmt::format("{} °C ({}, {})", num(h.limit), h.user_monitor ? "M143" : "default", where(r, sm, h.monitor_origin))
+                          : "NONE (limit 2000 °C)";
+    rows.push_back({std::to_string(n) + (n == s.bed_heater ? " (bed)" : ""), h.sensor >= 0 ? std::to_string(h.sensor) : "-", mon,
+                    h.model_set ? "M307" : "default", where(r, sm, h.created) + (h.maybe ? " (maybe)" : "")});
+  }
+  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  os << "\nFans\n";
+  rows = {{"fan", "created at"}};
+  for (const auto& [n, f] : s.fans) rows.push_back({std::to_string(n), where(r, sm, f.created) + (f.maybe ? " (maybe)" : "")});
+  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  os << "\nProbes\n";
+  rows = {{"probe", "type", "created at"}};
+  for (const auto& [n, p] : s.probes) rows.push_back({std::to_string(n), std::to_string(p.type), where(r, sm, p.created)});
+  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  os << fmt::format("\nTools{}\n", s.tools_known ? "" : " (some created with unknown numbers)");
+  rows = {{"tool", "name", "D", "H", "F", "X/Y/Z map", "offsets", "active/standby", "created at"}};
+  for (const auto& [n, t] : s.tools) {
+    std::string offs;
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) {
+      const Fact& f = t.offsets[static_cast<size_t>(i)];
+      offs += fmt::format("{}{}{}", offs.empty() ? "" : " ", axis_name(s.axes[static_cast<size_t>(i)]), fact(f));
+    }
+    NodeId last = t.last_configured;
+    rows.push_back({std::to_string(n) + (t.maybe ? " (maybe)" : ""), t.name.empty() ? "-" : "\"" + sanitize(t.name) + "\"",
+                    t.drives_known ? ints(t.drives) : "?", t.heaters_known ? ints(t.heaters) : "?", ints(t.fans),
+                    fmt::format("X→{} Y→{} Z→{}", map_str(s, t.xmap), map_str(s, t.ymap), map_str(s, t.zmap)),
+                    offs + (last != kNoNode ? fmt::format(" ({})", where(r, sm, last)) : ""),
+                    t.temps_known ? temps(t.active) + "/" + temps(t.standby) : "unknown", where(r, sm, t.created)});
+  }
+  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  for (const auto& [n, id] : s.failed_tools)
+    os << fmt::format("  tool {}: not created, its M563 failed ({})\n", n, where(r, sm, id));
+  os << "\nCurrent tool: "
+     << (s.current_tool_known ? (s.current_tool >= 0 ? std::to_string(s.current_tool) : std::string("none")) : std::string("unknown"))
+     << "\n";
+  os << "\nWorkplaces\n";
+  rows = {{"slot", "code", "origin"}};
+  static const char* kCodes[] = {"", "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
+  for (int w = 1; w <= 9; ++w) {
+    std::string o;
+    NodeId last = kNoNode;
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) {
+      const Fact& f = s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)];
+      if (f.origin != kNoNode) last = f.origin;
+      o += fmt::format("{}{}{}", o.empty() ? "" : " ", axis_name(s.axes[static_cast<size_t>(i)]), fact(f));
+    }
+    if (last == kNoNode) continue;
+    rows.push_back({std::to_string(w), kCodes[w], o + " (" + where(r, sm, last) + ")"});
+  }
+  if (rows.size() > 1) table(os, rows); else os << "  all at 0 (default)\n";
+  os << "\nMode: " << (s.mode == MachineMode::CNC ? "CNC" : s.mode == MachineMode::Laser ? "laser" : "FFF")
+     << fmt::format(", kinematics K{}", s.kinematics)
+     << (s.m501 != kNoNode ? fmt::format(", M501 at {}", where(r, sm, s.m501)) : ", no M501") << "\n";
+}
+
+void render_model_json(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
+  using nlohmann::json;
+  const MachineState& s = r.end_of_boot;
+  auto at = [&](NodeId id) -> json { return id == kNoNode ? json(nullptr) : json(where(r, sm, id)); };
+  auto fj = [](const Fact& f) -> json { return f.known ? json(f.value) : json("unknown"); };
+  json j;
+  j["version"] = 1;
+  j["machine"] = sanitize(title);
+  j["firmware"] = {{"version", r.target.version.str()}, {"given", r.target.version_given}, {"reason", r.target.reason}};
+  json ev = json::array();
+  for (const Evidence& e : r.target.evidence)
+    ev.push_back({{"what", e.what}, {"file", sanitize(sm.get(e.loc.file).display_path())}, {"line", sm.get(e.loc.file).position(e.loc.span.begin).line}});
+  j["firmware"]["evidence"] = ev;
+  j["board"] = board_name(r.target.board);
+  json axes = json::array();
+  for (size_t i = 0; i < s.axes.size(); ++i) {
+    const Axis& a = s.axes[i];
+    json drv = json::array();
+    for (auto& d : a.drivers) drv.push_back(d.str());
+    axes.push_back({{"index", i}, {"letter", axis_name(a)}, {"drivers", drv}, {"visible", static_cast<int>(i) < s.visible_axes},
+                    {"rotational", a.rotational}, {"maybe", a.maybe}, {"set_at", at(a.drivers_set != kNoNode ? a.drivers_set : a.created)}});
+  }
+  j["axes"] = axes;
+  json ex = json::array();
+  for (auto& d : s.extruder_drivers) ex.push_back(d.str());
+  j["extruders"] = {{"count", s.extruders_known ? json(s.extruders) : json("unknown")}, {"drivers", ex}, {"set_at", at(s.extruders_set)}};
+  json heaters = json::array();
+  for (const auto& [n, h] : s.heaters)
+    heaters.push_back({{"heater", n}, {"sensor", h.sensor}, {"monitor", h.monitor_installed}, {"limit", h.limit},
+                       {"user_monitor", h.user_monitor}, {"bed", n == s.bed_heater}, {"created_at", at(h.created)}});
+  j["heaters"] = heaters;
+  json sensors = json::array();
+  for (const auto& [n, sn] : s.sensors) sensors.push_back({{"sensor", n}, {"type", sanitize(sn.type)}, {"created_at", at(sn.created)}});
+  j["sensors"] = sensors;
+  json fans = json::array();
+  for (const auto& [n, f] : s.fans) fans.push_back({{"fan", n}, {"created_at", at(f.created)}});
+  j["fans"] = fans;
+  json probes = json::array();
+  for (const auto& [n, p] : s.probes) probes.push_back({{"probe", n}, {"type", p.type}, {"created_at", at(p.created)}});
+  j["probes"] = probes;
+  json tools = json::array();
+  for (const auto& [n, t] : s.tools) {
+    json offs = json::object();
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) offs[axis_name(s.axes[static_cast<size_t>(i)])] = fj(t.offsets[static_cast<size_t>(i)]);
+    tools.push_back({{"tool", n}, {"name", sanitize(t.name)}, {"drives", t.drives}, {"heaters", t.heaters}, {"fans", t.fans},
+                     {"x_map", map_str(s, t.xmap)}, {"y_map", map_str(s, t.ymap)}, {"z_map", map_str(s, t.zmap)},
+                     {"offsets", offs}, {"active", t.active}, {"standby", t.standby}, {"temperatures_known", t.temps_known},
+                     {"maybe", t.maybe}, {"created_at", at(t.created)}, {"last_configured_at", at(t.last_configured)}});
+  }
+  j["tools"] = tools;
+  j["current_tool"] = s.current_tool_known ? json(s.current_tool) : json("unknown");
+  json wps = json::array();
+  for (int w = 1; w <= 9; ++w) {
+    json o = json::object();
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) o[axis_name(s.axes[static_cast<size_t>(i)])] = fj(s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)]);
+    wps.push_back({{"slot", w}, {"origin", o}});
+  }
+  j["workplaces"] = wps;
+  j["m501_at"] = at(s.m501);
+  os << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
+}
+
+}  // namespace rrflint

@@ -1,0 +1,124 @@
+// The rule interface. A rule is metadata, Markdown docs and up to three pure check functions:
+//   check_file  per parsed file (lexical rules);
+//   check_node  per graph node, called with the machine state *before* the node runs;
+//   check_end   once per machine, with the graph and the end-of-boot state.
+// Rules report through a Sink and keep no state of their own between calls.
+#pragma once
+
+#include <deque>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "diagnostic.h"
+#include "graph.h"
+#include "infer.h"
+#include "model.h"
+#include "project.h"
+
+namespace rrflint {
+
+enum class FixAvailability : uint8_t { None, Sometimes, Always };
+
+struct RuleMeta {
+  std::string_view code;     // "RRF301"
+  std::string_view name;     // "g10-tool-before-definition"
+  Severity severity = Severity::Warning;
+  bool default_enabled = true;
+  FixAvailability fix = FixAvailability::None;
+  std::string_view summary;  // one sentence, also the first line of the docs
+  std::string_view docs;     // Markdown: What it does / Why is this bad? / Example / Use instead / Fix safety / References
+};
+
+struct LintOptions;
+class Sink;
+
+/// What a per-file rule sees.
+struct FileContext {
+  const Machine& machine;
+  const FileUnit& unit;
+  const Target& target;
+  const LintOptions& options;
+  const ParsedFile& parsed() const { return unit.parsed; }
+  const SourceFile& source() const { return *unit.source; }
+  Location at(Span s) const { return Location{unit.source->id(), s}; }
+};
+
+/// What a per-node rule sees: the node, the state before it runs, and the whole graph for look-ahead.
+struct NodeContext {
+  const Machine& machine;
+  const Graph& graph;
+  const Target& target;
+  const LintOptions& options;
+  const MachineState& state;  // before this node runs
+  NodeId id;
+  int runs;  // 2 = certainly runs, 1 = maybe (conditional), node effects are then unknown
+
+  const Node& node() const { return graph.nodes[id]; }
+  const FileUnit& unit() const { return machine.unit(node().unit); }
+  const ParsedFile& parsed() const { return unit().parsed; }
+  /// Valid for NodeKind::Command only.
+  const Command& command() const { return parsed().commands[node().index]; }
+  bool is_command() const { return node().kind == NodeKind::Command; }
+  bool is(char letter, int number) const {
+    return is_command() && command().letter == letter && command().number == number && command().fraction < 0;
+  }
+  const Param* param(char letter) const { return parsed().find(command(), letter); }
+  Location at(Span s) const { return Location{unit().source->id(), s}; }
+  /// Location of any node's command (for notes: "tool 1 is created here").
+  Location where(NodeId other) const;
+  /// Is this node in the boot sequence (config.g and what it runs), rather than a standalone entry?
+  bool in_boot() const;
+  /// The segment holding this node.
+  const Segment& segment() const;
+};
+
+/// What an end-of-machine rule sees.
+struct EndContext {
+  const Machine& machine;
+  const Graph& graph;
+  const Target& target;
+  const LintOptions& options;
+  const MachineState& end_of_boot;
+  Location where(NodeId id) const;
+};
+
+class Sink;
+
+/// Builder returned by Sink::report to add notes and a fix.
+class Report {
+ public:
+  explicit Report(Diagnostic* d) : d_(d) {}
+  Report& note(Location loc, std::string message);
+  Report& fix(Fix f);
+  Diagnostic& diagnostic() { return *d_; }
+
+ private:
+  Diagnostic* d_;
+};
+
+class Sink {
+ public:
+  /// Reports a finding of `meta` at `loc`. The severity is the rule's (possibly overridden) severity.
+  Report report(const RuleMeta& meta, Location loc, std::string message);
+  /// Same, with an explicit severity (rules with two levels, e.g. warning/info).
+  Report report(const RuleMeta& meta, Severity sev, Location loc, std::string message);
+  std::deque<Diagnostic>& diagnostics() { return out_; }
+
+ private:
+  std::deque<Diagnostic> out_;  // a deque: Report keeps a pointer while notes are added
+};
+
+struct Rule {
+  RuleMeta meta;
+  void (*check_file)(const FileContext&, Sink&) = nullptr;
+  void (*check_node)(const NodeContext&, Sink&) = nullptr;
+  void (*check_end)(const EndContext&, Sink&) = nullptr;
+};
+
+/// Every rule, sorted by code. Defined from rules/rules.def.
+const std::vector<const Rule*>& all_rules();
+/// By code ("RRF301") or name ("g10-tool-before-definition"), case-insensitive; nullptr if unknown.
+const Rule* find_rule(std::string_view code_or_name);
+
+}  // namespace rrflint

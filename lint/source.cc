@@ -1,0 +1,105 @@
+#include "source.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace rrflint {
+
+SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes)
+    : id_(id), display_(std::move(display)), sd_path_(std::move(sd_path)), bytes_(std::move(bytes)) {
+  const char* base = bytes_.data();
+  const size_t n = bytes_.size();
+  line_starts_.reserve(n / 32 + 1);
+  line_ends_.reserve(n / 32 + 1);
+  line_starts_.push_back(0);
+  const bool any_cr = std::memchr(base, '\r', n) != nullptr;
+  if (!any_cr) {
+    // Fast path: LF only, found with memchr.
+    const char* p = base;
+    const char* end = base + n;
+    while (p < end) {
+      const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
+      if (!nl) break;
+      line_ends_.push_back(static_cast<uint32_t>(nl - base));
+      line_starts_.push_back(static_cast<uint32_t>(nl - base + 1));
+      ++endings_.lf;
+      p = nl + 1;
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      const char c = base[i];
+      if (c == '\n') {
+        line_ends_.push_back(static_cast<uint32_t>(i));
+        line_starts_.push_back(static_cast<uint32_t>(i + 1));
+        ++endings_.lf;
+      } else if (c == '\r') {
+        line_ends_.push_back(static_cast<uint32_t>(i));
+        if (i + 1 < n && base[i + 1] == '\n') {
+          ++i;
+          ++endings_.crlf;
+        } else {
+          ++endings_.cr;
+        }
+        line_starts_.push_back(static_cast<uint32_t>(i + 1));
+      }
+    }
+  }
+  line_ends_.push_back(static_cast<uint32_t>(n));
+  // A final terminator does not start another (empty) line.
+  if (line_starts_.size() > 1 && line_starts_.back() == n) {
+    line_starts_.pop_back();
+    line_ends_.pop_back();
+  }
+}
+
+Span SourceFile::line_span(uint32_t line0) const { return Span{line_starts_[line0], line_ends_[line0]}; }
+
+uint32_t SourceFile::line_of(uint32_t offset) const {
+  auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+  return static_cast<uint32_t>(it - line_starts_.begin()) - 1;
+}
+
+std::string_view SourceFile::terminator(uint32_t line0) const {
+  uint32_t e = line_ends_[line0];
+  uint32_t next = line0 + 1 < line_starts_.size() ? line_starts_[line0 + 1] : size();
+  return std::string_view(bytes_).substr(e, next - e);
+}
+
+LineCol SourceFile::position(uint32_t offset) const {
+  offset = std::min(offset, size());
+  uint32_t line0 = line_of(offset);
+  uint32_t start = line_starts_[line0];
+  uint32_t end = std::min(offset, line_ends_[line0]);
+  uint32_t col = count_code_points(std::string_view(bytes_).substr(start, end - start)) + 1;
+  if (offset > line_ends_[line0]) col += 1;  // inside the terminator: one past the line end
+  return LineCol{line0 + 1, col};
+}
+
+uint32_t count_code_points(std::string_view s) {
+  uint32_t count = 0;
+  size_t i = 0;
+  const size_t n = s.size();
+  while (i < n) {
+    unsigned char c = static_cast<unsigned char>(s[i]);
+    size_t len = 1;
+    if (c >= 0xC2 && c <= 0xDF) len = 2;
+    else if (c >= 0xE0 && c <= 0xEF) len = 3;
+    else if (c >= 0xF0 && c <= 0xF4) len = 4;
+    if (len > 1) {
+      bool ok = i + len <= n;
+      for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+      if (!ok) len = 1;
+    }
+    i += len;
+    ++count;
+  }
+  return count;
+}
+
+const SourceFile& SourceManager::add(std::string display, std::string sd_path, std::string bytes) {
+  auto id = static_cast<FileId>(files_.size());
+  files_.push_back(std::make_unique<SourceFile>(id, std::move(display), std::move(sd_path), std::move(bytes)));
+  return *files_.back();
+}
+
+}  // namespace rrflint

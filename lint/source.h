@@ -1,0 +1,87 @@
+// Source files: one immutable byte buffer per file, byte spans into it, and a line index built once.
+//
+// Everything downstream (tokens, parameters, diagnostics, fixes) holds Spans into a SourceFile's buffer.
+// Line and column are computed only when something is rendered.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rrflint {
+
+using FileId = uint32_t;
+inline constexpr FileId kNoFile = UINT32_MAX;
+
+/// A half-open byte range [begin, end) into one file's buffer.
+struct Span {
+  uint32_t begin = 0;
+  uint32_t end = 0;
+  constexpr uint32_t size() const { return end - begin; }
+  constexpr bool empty() const { return begin == end; }
+  constexpr bool contains(uint32_t off) const { return off >= begin && off < end; }
+  friend constexpr bool operator==(Span, Span) = default;
+};
+
+/// 1-based line; 1-based column counted in Unicode code points (an invalid UTF-8 byte counts as one).
+struct LineCol {
+  uint32_t line = 1;
+  uint32_t column = 1;
+};
+
+/// How the file ends its lines. RRF reads a file with only CR line endings as one line (3.4.6+/3.5.0b2+).
+struct LineEndings {
+  uint32_t lf = 0;    // bare "\n"
+  uint32_t crlf = 0;  // "\r\n"
+  uint32_t cr = 0;    // lone "\r"
+  bool cr_only() const { return cr > 0 && lf == 0 && crlf == 0; }
+};
+
+class SourceFile {
+ public:
+  /// `display` is the path shown to users; `sd_path` the path on the SD card ("/sys/config.g"), or empty.
+  SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes);
+
+  FileId id() const { return id_; }
+  const std::string& display_path() const { return display_; }
+  const std::string& sd_path() const { return sd_path_; }
+  std::string_view text() const { return bytes_; }
+  std::string_view slice(Span s) const { return std::string_view(bytes_).substr(s.begin, s.size()); }
+  uint32_t size() const { return static_cast<uint32_t>(bytes_.size()); }
+
+  /// Lines as an editor shows them: split at LF, CRLF and lone CR. Line spans exclude the terminator.
+  uint32_t line_count() const { return static_cast<uint32_t>(line_starts_.size()); }
+  Span line_span(uint32_t line0) const;
+  uint32_t line_of(uint32_t offset) const;  // 0-based
+  LineCol position(uint32_t offset) const;
+  const LineEndings& endings() const { return endings_; }
+  /// The terminator after line `line0` ("\n", "\r\n", "\r" or "" at end of file).
+  std::string_view terminator(uint32_t line0) const;
+
+ private:
+  FileId id_;
+  std::string display_;
+  std::string sd_path_;
+  std::string bytes_;
+  std::vector<uint32_t> line_starts_;
+  std::vector<uint32_t> line_ends_;
+  LineEndings endings_;
+};
+
+/// Counts code points in `s` the way columns are reported (invalid bytes count one each).
+uint32_t count_code_points(std::string_view s);
+
+/// Owns every SourceFile of one run. FileIds index into it.
+class SourceManager {
+ public:
+  const SourceFile& add(std::string display, std::string sd_path, std::string bytes);
+  const SourceFile& get(FileId id) const { return *files_[id]; }
+  size_t size() const { return files_.size(); }
+
+ private:
+  std::vector<std::unique_ptr<SourceFile>> files_;
+};
+
+}  // namespace rrflint

@@ -1,0 +1,70 @@
+// RRF107 cr-line-endings: a file whose lines end with CR only is one line to RRF 3.4.6+/3.5.0b2+.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF107",
+    .name = "cr-line-endings",
+    .severity = Severity::Error,
+    .fix = FixAvailability::Always,
+    .summary = "The file ends its lines with CR only, which RRF reads as one single line.",
+    .docs = R"md(
+## What it does
+Reports a file whose lines end with a lone carriage return (old Mac line endings) and no line feed, on targets
+from RRF 3.4.6 (3.4 series) or 3.5.0-beta.2.
+
+## Why is this bad?
+When RRF reads a file it discards CR characters; only LF ends a line. A CR-only file is therefore **one single
+line**. If it starts with a `;` comment (as every config-tool file does) the whole file is a comment and
+config.g silently does nothing; otherwise only the first command runs, or the line overflows with
+`GCode command too long`. Before 3.4.6 a CR still ended a line, and the rule stays silent.
+
+rrflint still analyses the file line by line, as its author meant it, so other findings stay useful.
+
+## Example
+A file saved with CR line endings by an old editor.
+
+## Use instead
+Save the file with LF (or CRLF) line endings.
+
+## Fix safety
+The fix replaces every lone CR with LF. It is safe: it changes only line endings.
+
+## References
+- rrf-semantics §1.1, spec-verification §12f (StringParser.cpp `Put()`, commits 188115d1 / 1acd1a17)
+)md",
+};
+
+bool cr_is_one_line(Version v) {
+  if (v.major == 3 && v.minor == 4) return v >= Version(3, 4, 6);
+  return v >= Version(3, 5, 0, 1, 2);
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const SourceFile& src = cx.source();
+  if (!src.endings().cr_only() || !cr_is_one_line(cx.target.version)) return;
+  Fix fix;
+  fix.title = "replace CR line endings with LF";
+  fix.applicability = Applicability::Safe;
+  std::string_view t = src.text();
+  for (uint32_t i = 0; i < t.size(); ++i)
+    if (t[i] == '\r') fix.edits.push_back(Edit{cx.at(Span{i, i + 1}), "\n"});
+  const Span first = src.line_span(0);
+  const bool comment_first = !t.empty() && src.slice(first).find_first_not_of(" \t") != std::string_view::npos &&
+                             src.slice(first)[src.slice(first).find_first_not_of(" \t")] == ';';
+  out.report(kMeta, cx.at(Span{first.end, std::min(first.end + 1, src.size())}),
+             fmt::format("the file uses CR-only line endings: RRF {} reads all {} lines as one line{}",
+                         cx.target.version.str(), src.line_count(),
+                         comment_first ? ", and since it starts with a comment the whole file does nothing" : ""))
+      .fix(std::move(fix));
+}
+
+}  // namespace
+
+extern const Rule cr_line_endings{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

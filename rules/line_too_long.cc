@@ -1,0 +1,60 @@
+// RRF102 line-too-long: the stored part of a line exceeds the firmware's buffer.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF102",
+    .name = "line-too-long",
+    .severity = Severity::Error,
+    .summary = "The stored part of a line is longer than the firmware's G-code buffer.",
+    .docs = R"md(
+## What it does
+Counts the characters RRF stores for each line (leading indentation, the line number, checksums, comments
+and CNC-mode `( )` comments are not stored; quoted strings and `{…}` text are) and reports lines longer than
+the target's limit: 255 from RRF 3.4, 200 for 3.1–3.3, 160 before.
+
+## Why is this bad?
+From RRF 3.1 an over-long line raises `GCode command too long` while the line is checked for meta
+commands, which **aborts the rest of config.g**. RRF 3.0 drops the line with `G-Code buffer … length overflow`
+and carries on. Long `M587` network lines and long `M291` messages are the usual cause.
+
+## Example
+```gcode
+M291 P"…a message of three hundred characters…" S2
+```
+
+## Use instead
+Shorten the line, or split it: put a long message in a `var` built in pieces, or split settings over two
+commands where the command allows it.
+
+## References
+- rrf-semantics §1.1, spec-verification §12g (`MaxGCodeLength`, Configuration.h; StringParser.cpp
+  `CheckMetaCommand()`)
+)md",
+};
+
+void check(const FileContext& cx, Sink& out) {
+  const int limit = max_line_length(cx.target.version);
+  for (const Line& line : cx.parsed().lines) {
+    if (line.kind == LineKind::Comment || line.kind == LineKind::Blank) continue;
+    if (line.stored_length <= static_cast<uint32_t>(limit)) continue;
+    const bool aborts = cx.target.version >= Version(3, 1, 0, 0, 0);
+    Span s{line.code.begin + static_cast<uint32_t>(limit), line.code.end};
+    if (s.begin >= s.end) s = line.code;
+    out.report(kMeta, cx.at(s),
+               fmt::format("line stores {} characters, more than the {} RRF {} accepts: {}", line.stored_length,
+                           limit, cx.target.version.str(),
+                           aborts ? "'GCode command too long' aborts the rest of the file"
+                                  : "the line is dropped"));
+  }
+}
+
+}  // namespace
+
+extern const Rule line_too_long{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

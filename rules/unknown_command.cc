@@ -1,0 +1,92 @@
+// RRF101 unknown-command: a G/M code the target firmware does not implement, with no macro standing in.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF101",
+    .name = "unknown-command",
+    .severity = Severity::Warning,
+    .summary = "A G or M code that the target firmware does not implement and no macro file provides.",
+    .docs = R"md(
+## What it does
+Checks every G and M code against the table of codes each RRF version implements (2.05 to 3.6, read from the
+firmware's dispatch code). A code the target does not implement is reported unless the SD card has the macro
+RRF runs in its place: `/sys/Gnn.g`, `/sys/Mnn.g` or (3.4+) `/sys/Mnn.f.g`.
+
+## Why is this bad?
+RRF answers `Mnnn: Command is not supported` and does nothing. Usually the code is a typo (`M596` for `M569`),
+a command from another firmware (Marlin's `M851`), or a command newer than the firmware on the board.
+
+## Example
+```gcode
+M596 P0.2 S0    ; meant M569
+```
+
+## Use instead
+```gcode
+M569 P0.2 S0
+```
+
+## References
+- rrf-semantics §1.6 (GCodes2.cpp `TryMacroFile()`, `HandleResult`)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes
+)md",
+};
+
+struct CodeRange {
+  char letter;
+  int number;
+  int fraction;
+  int first, last;
+};
+
+constexpr CodeRange kCodes[] = {
+#define CODE(l, n, f, a, b) {l, n, f, a, b},
+#include "../lint/command_table.inc"
+#undef CODE
+};
+
+int version_index(Version v) {
+  if (v.major < 3) return 0;
+  if (v.minor >= 6 || v.major > 3) return 7;
+  return 1 + v.minor;
+}
+
+bool implemented(char letter, int number, int fraction, int vi) {
+  for (const CodeRange& c : kCodes)
+    if (c.letter == letter && c.number == number && c.fraction == fraction && vi >= c.first && vi <= c.last)
+      return true;
+  return false;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const int vi = version_index(cx.target.version);
+  const ParsedFile& pf = cx.parsed();
+  for (const Command& c : pf.commands) {
+    if (c.letter == 'T' || c.number < 0) continue;
+    if (implemented(c.letter, c.number, c.fraction, vi)) continue;
+    // Before 3.4 a fraction is ignored when the base code exists.
+    if (c.fraction >= 0 && cx.target.version < Version(3, 4, 0, 0, 0) && implemented(c.letter, c.number, -1, vi)) continue;
+    std::string name = c.fraction >= 0 ? fmt::format("{}{}.{}", c.letter, c.number, c.fraction)
+                                       : fmt::format("{}{}", c.letter, c.number);
+    if (cx.machine.has_file("/sys/" + name + ".g")) continue;
+    bool elsewhere = false;
+    for (int v = 0; v <= 7; ++v) elsewhere = elsewhere || implemented(c.letter, c.number, c.fraction, v);
+    std::string why = elsewhere ? fmt::format("RRF {} does not implement it (other versions do)", cx.target.version.str())
+                                : fmt::format("RRF does not implement it");
+    out.report(kMeta, cx.at(c.word),
+               fmt::format("'{}' is not a command: {}, so it answers '{}: Command is not supported'; a /sys/{}.g "
+                           "macro would run instead",
+                           name, why, name, name));
+  }
+}
+
+}  // namespace
+
+extern const Rule unknown_command{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

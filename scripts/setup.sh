@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs rrflint's build and test dependencies from Debian packages.
+# Idempotent: does nothing when everything is present. Works as root or through sudo.
+#   scripts/setup.sh          build dependencies
+#   scripts/setup.sh --test   build + test dependencies
+set -euo pipefail
+
+pkgs=(cmake make g++ pkg-config libfmt-dev nlohmann-json3-dev catch2 libcli11-dev libtomlplusplus-dev)
+if [[ "${1:-}" == "--test" ]]; then
+  pkgs+=(python3 python3-jsonschema git pre-commit)
+fi
+if [[ "${1:-}" == "--bench" ]]; then
+  pkgs+=(libbenchmark-dev hyperfine)
+  command -v npm >/dev/null 2>&1 || pkgs+=(npm)
+fi
+
+missing=()
+for p in "${pkgs[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+if [[ $(id -u) -eq 0 ]]; then
+  SUDO=()
+elif command -v sudo >/dev/null 2>&1; then
+  SUDO=(sudo)
+else
+  echo "setup: need root or sudo to install: ${missing[*]}" >&2
+  exit 2
+fi
+echo "setup: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" apt-get update -qq
+"${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
