@@ -258,9 +258,9 @@ int main(int argc, char** argv) {
   auto add_common = [&](CLI::App* sub) {
     sub->add_option("--firmware", common.firmware, "Target firmware version, e.g. 3.5 (default: inferred)");
     sub->add_option("--board", common.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
-    sub->add_option("--select", common.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the default set")->delimiter(',');
-    sub->add_option("--extend-select", common.extend_select, "Rules to enable in addition to the default set")->delimiter(',');
-    sub->add_option("--ignore", common.ignore, "Rules to disable (codes or names)")->delimiter(',');
+    sub->add_option("--select", common.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the default set")->delimiter(',')->allow_extra_args(false);
+    sub->add_option("--extend-select", common.extend_select, "Rules to enable in addition to the default set")->delimiter(',')->allow_extra_args(false);
+    sub->add_option("--ignore", common.ignore, "Rules to disable (codes or names)")->delimiter(',')->allow_extra_args(false);
     sub->add_flag("--tool-changer", common.tool_changer, "The machine is a tool changer (evidence for RRF305)");
   };
 

@@ -36,7 +36,7 @@ std::vector<const Rule*> enabled_rules(const LintOptions& o, std::vector<std::st
       }
       // A code prefix such as "RRF3" selects a whole family.
       std::vector<const Rule*> hit;
-      if (const Rule* r = find_rule(n)) hit.push_back(r);
+      if (const Rule* exact = find_rule(n)) hit.push_back(exact);
       else if (n.size() >= 4 && to_lower(n).starts_with("rrf"))
         for (const Rule* r : all)
           if (to_lower(r->meta.code).starts_with(to_lower(n))) hit.push_back(r);

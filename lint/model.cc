@@ -18,19 +18,27 @@ struct Cx {
   bool maybe;
 };
 
+/// limit = the highest over-temperature monitor (Heater::GetHighestTemperatureLimit), 2000 with none.
+void update_limit(Heater& h) {
+  double hi = -1;
+  for (double l : h.monitor_limits) hi = std::max(hi, l);
+  h.monitor_installed = hi >= 0;
+  h.limit = hi >= 0 ? hi : 2000;
+}
+
 void install_tool_heater_defaults(MachineState& s, int h, NodeId id) {
   auto it = s.heaters.find(h);
   if (it == s.heaters.end() || it->second.user_monitor) return;
-  it->second.monitor_installed = true;
-  it->second.limit = s.firmware < Version(3, 1, 0, 0, 0) ? 290.0 : kToolHeaterLimit;
+  it->second.monitor_limits[0] = s.firmware < Version(3, 1, 0, 0, 0) ? 290.0 : kToolHeaterLimit;
+  update_limit(it->second);
   it->second.monitor_origin = id;
 }
 
 void install_bed_heater_defaults(MachineState& s, int h, NodeId id) {
   auto it = s.heaters.find(h);
   if (it == s.heaters.end() || it->second.user_monitor) return;
-  it->second.monitor_installed = true;
-  it->second.limit = kBedHeaterLimit;
+  it->second.monitor_limits[0] = kBedHeaterLimit;
+  update_limit(it->second);
   it->second.monitor_origin = id;
 }
 
@@ -341,11 +349,20 @@ void do_m143(Cx& x) {
   auto S = get_float(x.pf, x.c, 'S');
   auto A = get_int(x.pf, x.c, 'A');  // action; A0 = fault; the limit matters for any action
   (void)A;
-  if (!S.present()) return;
-  it->second.user_monitor = true;
-  it->second.monitor_installed = true;
-  it->second.monitor_origin = x.id;
-  it->second.limit = S.known() && !x.maybe ? S.value : 2000;
+  auto C = get_int(x.pf, x.c, 'C');  // condition: 0 (default) temperature exceeded, 1 too low, -1 disabled
+  auto P = get_int(x.pf, x.c, 'P');  // monitor index 0–2
+  if (!S.present() && !C.present()) return;
+  Heater& ht = it->second;
+  ht.user_monitor = true;
+  ht.monitor_origin = x.id;
+  if (x.maybe || (S.present() && !S.known()) || (C.present() && !C.known()) || (P.present() && !P.known())) {
+    for (double& l : ht.monitor_limits) l = std::max(l, 2000.0);  // unknown: no rule may rely on a limit
+  } else if (const int64_t i = P.known() ? P.value : 0; i >= 0 && i < 3) {
+    double& l = ht.monitor_limits[static_cast<size_t>(i)];
+    if (C.known() && C.value != 0) l = -1;
+    else l = S.known() ? S.value : (l >= 0 ? l : 2000.0);
+  }
+  update_limit(ht);
 }
 
 void do_m558(Cx& x) {
@@ -487,6 +504,15 @@ void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
       break;
     }
     case 558: do_m558(x); break;
+    case 98: {
+      // A macro whose path is an expression may do anything: what it could create is unknown from here on.
+      auto P = get_string(x.pf, x.c, 'P');
+      if (P.unknown()) {
+        s.tools_known = s.axes_known = s.heaters_known = s.fans_known = s.sensors_known = s.probes_known = false;
+        s.extruders_known = false;
+      }
+      break;
+    }
     case 451: s.mode = MachineMode::FFF, s.mode_set = id; break;
     case 452: s.mode = MachineMode::Laser, s.mode_set = id; break;
     case 453: s.mode = MachineMode::CNC, s.mode_set = id; break;

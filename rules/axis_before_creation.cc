@@ -1,0 +1,124 @@
+// RRF201 axis-before-creation: an axis letter used before the M584 that creates the axis.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF201",
+    .name = "axis-before-creation",
+    .severity = Severity::Warning,
+    .summary = "An axis letter is used before the M584 that creates the axis, so its value is silently ignored.",
+    .docs = R"md(
+## What it does
+Reports an axis letter other than X, Y and Z in `M92`, `M201`, `M203`, `M205`, `M206`, `M208`, `M350`, `M566`,
+`M574`, `M906`, `M913`, `M915`, `M917` or `G31` at a point where no axis with that letter exists yet. A note points
+at the later `M584` that creates the axis, if there is one. Hidden axes (`M584 P`) are accepted by these commands,
+so they are not findings here.
+
+`G31 C` gets its own message: up to RRF 3.2 `C` was the probe's temperature coefficient; from 3.3 it is the C axis
+offset (the coefficient is `T`).
+
+## Why is this bad?
+These commands loop over the axes that exist. A letter of an axis that does not exist yet is skipped without any
+message: the U steps/mm, the U current or the U endstop are simply never set, and the axis later runs with defaults.
+
+## Example
+```gcode
+M92 X80 Y80 Z400 U80
+M584 X0 Y1 Z2 U3
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 U3
+M92 X80 Y80 Z400 U80
+```
+
+## References
+- rrf-semantics §2.1, §2.11, §3.2 (GCodes2.cpp M92/M350/M906 loops over `numTotalAxes`); R24, R30
+- spec-verification §10, X2 (G31 `C`)
+)md",
+};
+
+bool is_axis_command(const Command& c) {
+  if (c.fraction >= 0) return false;
+  if (c.letter == 'G') return c.number == 31;
+  if (c.letter != 'M') return false;
+  switch (c.number) {
+    case 92: case 201: case 203: case 205: case 206: case 208: case 350: case 566: case 574: case 906: case 913:
+    case 915: case 917:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Letters that are parameters, not axes, of a given command.
+bool is_own_parameter(const Command& c, char letter) {
+  if (c.letter == 'G') return letter == 'P' || letter == 'S' || letter == 'T' || letter == 'K' || letter == 'H';
+  switch (c.number) {
+    case 915: return letter == 'S' || letter == 'F' || letter == 'H' || letter == 'T' || letter == 'R' || letter == 'P';
+    case 574: return letter == 'S' || letter == 'P';
+    default: return false;
+  }
+}
+
+NodeId later_creation(const NodeContext& cx, char letter) {
+  const Segment& seg = cx.segment();
+  for (NodeId i = cx.id + 1; i < seg.end; ++i) {
+    const Node& n = cx.graph.nodes[i];
+    if (n.kind != NodeKind::Command) continue;
+    const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+    const Command& c = pf.commands[n.index];
+    if (c.letter == 'M' && c.number == 584 && c.fraction < 0 && pf.find(c, letter)) return i;
+  }
+  return kNoNode;
+}
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is_command()) return;
+  const Command& c = cx.command();
+  if (!is_axis_command(c)) return;
+  const MachineState& s = cx.state;
+  if (!s.axes_known || s.unknown_baseline) return;
+  const ParsedFile& pf = cx.parsed();
+  const std::string_view order = allowed_axis_letters();
+  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    const char L = p->letter;
+    if (L == 0 || L == 'X' || L == 'Y' || L == 'Z' || L == 'E' || order.find(L) == std::string_view::npos) continue;
+    if (is_own_parameter(c, L) || s.axis_index(L) >= 0) continue;
+    if (p->kind == ValueKind::String || p->kind == ValueKind::Text) continue;  // `C"nil"`: a pin, not an axis value
+    if (pf.find(c, L) != p) continue;  // only the first of duplicate letters counts
+    const std::string axis = L >= 'a' ? fmt::format("'{}", L) : std::string(1, L);
+    if (c.letter == 'G' && L == 'C') {
+      const bool old = s.firmware < Version(3, 3, 0, 0, 0);
+      if (old) continue;  // the temperature coefficient: correct up to 3.2
+      out.report(kMeta, cx.at(p->span),
+                 fmt::format("'G31 C' is no longer the temperature coefficient (it is 'T' since RRF 3.3): on RRF {} "
+                             "it is the C axis offset, and no C axis exists here, so it is ignored",
+                             s.firmware.str()));
+      continue;
+    }
+    const NodeId later = later_creation(cx, L);
+    std::string_view code = pf.text(c.word);
+    if (later != kNoNode) {
+      out.report(kMeta, cx.at(p->span),
+                 fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,
+                             axis, pf.text(p->span)))
+          .note(cx.where(later), fmt::format("axis {} is created here", axis));
+    } else {
+      out.report(kMeta, cx.at(p->span),
+                 fmt::format("'{}' sets axis {}, but no M584 creates axis {}: RRF ignores '{}' without a message",
+                             code, axis, axis, pf.text(p->span)));
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule axis_before_creation{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint

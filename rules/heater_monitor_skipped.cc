@@ -1,0 +1,126 @@
+// RRF206 heater-monitor-skipped: a tool or bed names a heater before M950 creates it, so the heater never gets
+// its default over-temperature monitor.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF206",
+    .name = "heater-monitor-skipped",
+    .severity = Severity::Warning,
+    .summary = "A tool or bed names a heater before M950 creates it, so the heater gets no default over-temperature monitor.",
+    .docs = R"md(
+## What it does
+On targets from RRF 3.2, reports `M563 … H<n>`, `M140 H<n>` or `M141 H<n>` naming heater n before the `M950 H<n>`
+that creates it later in the boot sequence. It stays silent when, after that `M950`, the heater gets a user
+over-temperature monitor (`M143 H<n> S…`) or is named again by `M563`/`M140`/`M141`, which installs the defaults.
+RRF 2 configs have default heaters and are not checked.
+
+## Why is this bad?
+RRF installs the default over-temperature monitor (285 °C for a tool heater, 125 °C for a bed or chamber) and the
+default heater model only when `M563`/`M140`/`M141` names a heater that **already exists**. A heater created later
+has no monitor at all: its temperature limit is 2000 °C, nothing trips on a runaway, and without an `M307` it stays
+disabled (`Heater n not switched on due to bad model`). RRF says nothing at boot.
+
+## Example
+```gcode
+M563 P0 D0 H1
+M308 S1 P"temp1" Y"thermistor"
+M950 H1 C"out1" T1
+```
+
+## Use instead
+```gcode
+M308 S1 P"temp1" Y"thermistor"
+M950 H1 C"out1" T1
+M563 P0 D0 H1
+```
+
+## References
+- rrf-semantics §2.2, §2.10; spec-verification §8 (Tool.cpp `Create`, Heat.cpp `SetAsToolHeater`,
+  Heater.cpp `SetAsToolHeater`/`SetAsBedOrChamberHeater`, `GetHighestTemperatureLimit`); R21, R34
+)md",
+};
+
+struct Cmd {
+  const ParsedFile* pf;
+  const Command* c;
+};
+
+Cmd cmd_at(const NodeContext& cx, NodeId i) {
+  const Node& n = cx.graph.nodes[i];
+  const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+  return {&pf, &pf.commands[n.index]};
+}
+
+bool names_heater(const Cmd& k, int h) {
+  const Command& c = *k.c;
+  if (c.letter != 'M' || c.fraction >= 0) return false;
+  if (c.number != 563 && c.number != 140 && c.number != 141) return false;
+  auto H = get_int_list(*k.pf, c, 'H');
+  if (!H.known()) return H.unknown();
+  for (int64_t v : H.value)
+    if (v == h) return true;
+  return false;
+}
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is_command() || !cx.in_boot()) return;
+  const Command& c = cx.command();
+  if (c.letter != 'M' || c.fraction >= 0 || (c.number != 563 && c.number != 140 && c.number != 141)) return;
+  const MachineState& s = cx.state;
+  if (s.firmware < Version(3, 2, 0, 0, 0) || !s.heaters_known || s.unknown_baseline) return;
+  auto H = get_int_list(cx.parsed(), c, 'H');
+  if (!H.known()) return;
+  const Segment& seg = cx.segment();
+  for (int64_t hv : H.value) {
+    const int h = static_cast<int>(hv);
+    if (h < 0 || s.heaters.count(h)) continue;
+    // The later M950 that creates the heater.
+    NodeId create = kNoNode;
+    for (NodeId i = cx.id + 1; i < seg.end && create == kNoNode; ++i) {
+      if (cx.graph.nodes[i].kind != NodeKind::Command) continue;
+      Cmd k = cmd_at(cx, i);
+      if (k.c->letter == 'M' && k.c->number == 950 && k.c->fraction < 0) {
+        auto v = get_int(*k.pf, *k.c, 'H');
+        if (v.unknown()) return;  // some heater is created from an expression: cannot tell
+        if (v.known() && v.value == h && k.pf->find(*k.c, 'C')) create = i;
+      }
+    }
+    if (create == kNoNode) continue;
+    bool closed = false, model = false;
+    for (NodeId i = create + 1; i < seg.end && !closed; ++i) {
+      if (cx.graph.nodes[i].kind != NodeKind::Command) continue;
+      Cmd k = cmd_at(cx, i);
+      const Command& kc = *k.c;
+      if (kc.letter != 'M' || kc.fraction >= 0) continue;
+      if (kc.number == 143) {
+        auto v = get_int(*k.pf, kc, 'H');
+        const bool same = v.unknown() || (v.known() ? v.value == h : h == 1);
+        if (same && k.pf->find(kc, 'S')) closed = true;
+      } else if (kc.number == 307) {
+        auto v = get_int(*k.pf, kc, 'H');
+        if (v.known() && v.value == h) model = true;
+      } else if (names_heater(k, h)) {
+        closed = true;
+      }
+    }
+    if (closed) continue;
+    const bool bed = c.number != 563;
+    out.report(kMeta, cx.at(c.span),
+               fmt::format("'{}' names heater {} before 'M950 H{}' creates it: the heater gets no default {} °C "
+                           "over-temperature monitor (its limit is 2000 °C){}",
+                           cx.parsed().text(c.word), h, h, bed ? 125 : 285,
+                           model ? "" : ", and with no M307 after its M950 it stays disabled"))
+        .note(cx.where(create), fmt::format("heater {} is created here", h));
+  }
+}
+
+}  // namespace
+
+extern const Rule heater_monitor_skipped{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint
