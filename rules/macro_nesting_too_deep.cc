@@ -1,0 +1,50 @@
+// RRF503 macro-nesting-too-deep: macro calls nest deeper than the firmware allows.
+#include <fmt/format.h>
+
+#include "macro_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF503",
+    .name = "macro-nesting-too-deep",
+    .severity = Severity::Error,
+    .summary = "Macro calls nest deeper than the target firmware's limit.",
+    .docs = R"md(
+## What it does
+Counts the nesting of files the boot sequence (and each macro) runs, config.g itself being level 1, and reports the
+call that goes past the target's `MaxStackDepth`: 10 from RRF 3.4, 7 for 3.01–3.3, 5 before.
+
+## Why is this bad?
+RRF answers `Push(): stack overflow on Trigger` and aborts the whole stack of running files: the rest of config.g does
+not run.
+
+## Example
+```gcode
+; config.g -> a.g -> b.g -> … eleven levels deep
+```
+
+## Use instead
+Flatten the macro chain: call the leaf macros from one level.
+
+## References
+- rrf-semantics §2.9 (GCodes.cpp:1814-1823, Configuration.h `MaxStackDepth`); R53
+)md",
+};
+
+void check(const EndContext& cx, Sink& out) {
+  for (const GraphEvent& e : cx.graph.events) {
+    if (e.kind != GraphEvent::Kind::TooDeep) continue;
+    out.report(kMeta, event_path_loc(cx, e),
+               fmt::format("calling '{}' here nests macros {} deep, past RRF {}'s limit of {}: 'Push(): stack overflow' "
+                           "aborts every running file",
+                           e.path, cx.graph.nodes[e.node].depth + 1, cx.target.version.str(), e.limit));
+  }
+}
+
+}  // namespace
+
+extern const Rule macro_nesting_too_deep{.meta = kMeta, .check_end = check};
+
+}  // namespace rrflint

@@ -1,0 +1,54 @@
+// RRF501 missing-macro: M98 names a file that is not on the SD card.
+#include <fmt/format.h>
+
+#include "macro_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF501",
+    .name = "missing-macro",
+    .severity = Severity::Warning,
+    .summary = "M98 names a macro file that does not exist on the SD card.",
+    .docs = R"md(
+## What it does
+Resolves every `M98 P"…"` the way RRF does (relative paths under `/sys` or the `M505` folder, `0:/…` and `/…`
+absolute, case-insensitive like the SD card) and reports a file that is not there.
+
+## Why is this bad?
+RRF prints the warning `Macro file x.g not found` and carries on: whatever the macro was meant to set up (tools,
+offsets, fans) silently does not happen. A common cause is a macro under `/macros` called with a relative path,
+which RRF looks for under `/sys`.
+
+## Example
+```gcode
+M98 P"macros/levels.g"   ; looks for /sys/macros/levels.g
+```
+
+## Use instead
+```gcode
+M98 P"0:/macros/levels.g"
+```
+
+## References
+- rrf-semantics §2.9 (GCodes2.cpp M98, MassStorage.cpp `CombineName`); R41
+)md",
+};
+
+void check(const EndContext& cx, Sink& out) {
+  for (const GraphEvent& e : cx.graph.events) {
+    if (e.kind != GraphEvent::Kind::MissingFile || !event_is_m98(cx, e)) continue;
+    std::string hint;
+    const std::string lower = to_lower(e.path);
+    if (lower.starts_with("/sys/macros/")) hint = fmt::format(": did you mean '0:/macros/{}'?", e.path.substr(12));
+    out.report(kMeta, event_path_loc(cx, e),
+               fmt::format("macro file '{}' does not exist: RRF warns 'Macro file not found' and carries on{}", e.path, hint));
+  }
+}
+
+}  // namespace
+
+extern const Rule missing_macro{.meta = kMeta, .check_end = check};
+
+}  // namespace rrflint
