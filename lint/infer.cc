@@ -8,7 +8,7 @@
 namespace rrflint {
 namespace {
 
-std::optional<Version> version_after(std::string_view text, std::string_view marker) {
+std::optional<Version> version_after(std::string_view text, std::string_view marker, bool* major_only = nullptr) {
   std::string lower = to_lower(text);
   size_t at = lower.find(marker);
   if (at == std::string::npos) return std::nullopt;
@@ -18,6 +18,7 @@ std::optional<Version> version_after(std::string_view text, std::string_view mar
   while (p < text.size() && (std::isalnum(static_cast<unsigned char>(text[p])) || text[p] == '.' || text[p] == '-')) ++p;
   std::string_view cand = text.substr(b, p - b);
   while (!cand.empty() && (cand.back() == '.' || cand.back() == '-')) cand.remove_suffix(1);
+  if (major_only) *major_only = cand.find('.') == std::string_view::npos;
   auto v = Version::parse(cand);
   if (!v) {  // "3.3RC2" style suffixes: keep the numeric part
     size_t q = 0;
@@ -77,8 +78,17 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
       Location loc{config->source->id(), line.comment};
       if (!stated) {
         for (std::string_view marker : {"firmware version", "configuration tool", "reprapfirmware version"}) {
-          if (auto v = version_after(txt, marker)) {
-            stated = Evidence{Evidence::Kind::Stated, *v, fmt::format("config.g header states version {}", v->str()), loc};
+          bool major_only = false;
+          if (auto v = version_after(txt, marker, &major_only)) {
+            // "firmware version 3" names the series only: a floor, not a version.
+            if (major_only && v->major < 3)
+              stated = Evidence{Evidence::Kind::Ceiling, Version(2, 5, 1),
+                                fmt::format("config.g header states firmware version {}", v->major), loc};
+            else if (major_only)
+              stated = Evidence{Evidence::Kind::Floor, Version(v->major, 0, 0),
+                                fmt::format("config.g header states firmware version {}", v->major), loc};
+            else
+              stated = Evidence{Evidence::Kind::Stated, *v, fmt::format("config.g header states version {}", v->str()), loc};
             break;
           }
         }
@@ -149,7 +159,7 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
       t.version = series_latest(floor);
       t.reason = fmt::format("target RRF {}: {} although {}; the newer evidence wins", t.version.str(),
                              floor_ev->what, ceil_ev->what);
-    } else if (stated && series_latest(stated->version) >= floor && series_latest(stated->version) <= ceiling) {
+    } else if (stated && stated->kind == Evidence::Kind::Stated && series_latest(stated->version) >= floor && series_latest(stated->version) <= ceiling) {
       t.version = series_latest(stated->version);
       t.reason = fmt::format("target RRF {}: {}", t.version.str(), stated->what);
     } else if (ceil_ev) {
@@ -159,7 +169,7 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
       t.version = kLatestVersion;
       t.reason = floor_ev ? fmt::format("target RRF {} (newest known; {})", t.version.str(), floor_ev->what)
                           : fmt::format("target RRF {} (newest known; nothing in the files says otherwise)", t.version.str());
-      if (stated && series_latest(stated->version) < floor)
+      if (stated && stated->kind == Evidence::Kind::Stated && series_latest(stated->version) < floor)
         t.reason += fmt::format("; the header's version {} is older than the syntax used", stated->version.str());
     }
   }

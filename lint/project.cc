@@ -120,6 +120,16 @@ void Machine::set_listing(const std::vector<std::string>& sd_paths) {
   for (const auto& p : sd_paths) listing_[to_lower(p)] = true;
 }
 
+bool Machine::has_dir(std::string_view sd_dir) const {
+  std::string key = to_lower(sd_dir);
+  if (!key.ends_with("/")) key += '/';
+  auto it = listing_.lower_bound(key);
+  if (it != listing_.end() && it->first.starts_with(key)) return true;
+  for (const auto& [path, idx] : by_path_)
+    if (idx >= 0 && path.starts_with(key)) return true;
+  return false;
+}
+
 bool Machine::has_file(std::string_view sd_path) const {
   const std::string key = to_lower(sd_path);
   if (listing_.count(key)) return true;

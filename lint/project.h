@@ -79,6 +79,8 @@ class Machine {
   void set_listing(const std::vector<std::string>& sd_paths);
   /// Does the SD card hold this file (case-insensitive)? Looks in the listing and in what was loaded.
   bool has_file(std::string_view sd_path) const;
+  /// Does the SD card hold any file below this folder? (A repository often keeps only sys/.)
+  bool has_dir(std::string_view sd_dir) const;
 
  private:
   SourceManager& sources_;
