@@ -21,7 +21,7 @@ RRF prints the warning `Macro file x.g not found` and carries on: whatever the m
 offsets, fans) silently does not happen. A common cause is a macro under `/macros` called with a relative path,
 which RRF looks for under `/sys`.
 
-A folder of which the linted copy holds no file at all (printer-config repositories often keep only `sys/`) is not
+A top-level folder (such as `/macros`) of which the linted copy holds no file at all (printer-config repositories often keep only `sys/`) is not
 judged: the file may well be on the card.
 
 ## Example
@@ -43,8 +43,9 @@ void check(const EndContext& cx, Sink& out) {
   for (const GraphEvent& e : cx.graph.events) {
     if (e.kind != GraphEvent::Kind::MissingFile || !event_is_m98(cx, e)) continue;
     // A folder with no file at all on the card (a repository that keeps only sys/) says nothing about the SD card.
-    const std::string dir = e.path.substr(0, e.path.rfind('/'));
-    if (!dir.empty() && !cx.machine.has_dir(dir)) continue;
+    const size_t second = e.path.find('/', 1);
+    const std::string top = second == std::string::npos ? std::string() : e.path.substr(0, second);
+    if (!top.empty() && !cx.machine.has_dir(top)) continue;
     std::string hint;
     const std::string lower = to_lower(e.path);
     if (lower.starts_with("/sys/macros/")) hint = fmt::format(": did you mean '0:/macros/{}'?", e.path.substr(12));
