@@ -100,10 +100,9 @@ void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool
   else if (p.present()) bits = -1;  // unknown
   int target;
   if (c.number_expr) target = -2;
-  else if (c.number < 0 && c.number != -1) target = -1;
+  else if (c.number < 0) target = -1;  // T-1: deselect
   else target = c.number;
-  if (c.number == -1 && !c.number_expr && c.param_count == 0) return;  // bare `T` only reports
-  if (c.number == -1 && !c.number_expr) return;                          // `T R1` and friends: not modelled
+  if (!c.has_number && !c.number_expr) return;  // a bare `T` only reports; `T R1` and friends: not modelled
   if (target == -2 || bits < 0) {
     current_tool_ = -2;
     push(Node{NodeKind::ToolSelect, CallKind::Boot, true, depth, u.index, UINT32_MAX, g_.nodes[site].enter, site});

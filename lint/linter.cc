@@ -4,6 +4,8 @@
 #include <set>
 #include <tuple>
 
+#include "suppress.h"
+
 namespace rrflint {
 
 std::string_view severity_name(Severity s) {
@@ -169,6 +171,8 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
                                  a.message == b.message;
                         }),
             out.end());
+  // 7. Per-file ignores and suppression comments (lint/suppress.cc), which add RRF900/RRF901.
+  apply_suppressions(res, rules, options);
   return res;
 }
 

@@ -2,6 +2,7 @@
 // one forward pass of the model with the enabled rules -> sorted, de-duplicated diagnostics.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -27,6 +28,9 @@ struct LintOptions {
   bool tool_changer = false;                 // machine.tool-changer: evidence for RRF305
   bool include_entries = true;               // lint every other macro as its own entry
   std::string sys_dir = "/sys";
+  bool inline_suppressions = true;  // honour `; rrflint: disable=…` comments (--no-inline-suppressions: false)
+  /// Per-file ignores (config file): is rule `code` switched off for this file? Null: never.
+  std::function<bool(const SourceFile&, std::string_view code)> ignored_in_file;
 };
 
 /// Which rules are on, after select/extend/ignore. Unknown names go to `errors`.

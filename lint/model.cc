@@ -205,13 +205,19 @@ int tool_for(Cx& x, bool& known) {
 }
 
 void set_temps(Cx& x, Tool& t) {
-  for (char L : {'S', 'R'}) {
+  for (char L : {'R', 'S'}) {  // RRF sets standby first, then active
     if (!x.pf.find(x.c, L)) continue;
     auto v = get_float_list(x.pf, x.c, L);
     std::vector<double>& dst = L == 'S' ? t.active : t.standby;
     if (!v.known() || x.maybe) {
       t.temps_known = false;
       continue;
+    }
+    // A value at or above a heater's limit throws `Requested temperature out of range`: nothing more is set.
+    for (size_t i = 0; i < t.heaters.size(); ++i) {
+      const double value = v.value.size() == 1 ? v.value[0] : (i < v.value.size() ? v.value[i] : -1000);
+      auto h = x.s.heaters.find(static_cast<int>(t.heaters[i]));
+      if (value > -273 && h != x.s.heaters.end() && h->second.monitor_installed && value >= h->second.limit) return;
     }
     dst = v.value;
     if (dst.size() == 1 && t.heaters.size() > 1) dst.resize(t.heaters.size(), dst[0]);
@@ -380,6 +386,25 @@ void do_m558(Cx& x) {
   x.s.probes[k] = p;
 }
 
+// M585 measures the current tool's offset on the first visible axis it names (GCodes6.cpp `ProbeTool()`): the
+// value is unknown and flagged probed. With the current tool unknown, any tool may have been measured.
+void do_m585(Cx& x) {
+  MachineState& s = x.s;
+  int axis = -1;
+  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()) && i < kMaxAxisSlots && axis < 0; ++i)
+    if (x.pf.find(x.c, s.axes[static_cast<size_t>(i)].letter)) axis = i;
+  if (axis < 0) return;
+  auto measure = [&](Tool& t) {
+    t.offsets[static_cast<size_t>(axis)] = Fact{0, false, x.id};
+    t.probed[static_cast<size_t>(axis)] = true;
+  };
+  if (s.current_tool_known) {
+    if (auto it = s.tools.find(s.current_tool); it != s.tools.end()) measure(it->second);
+    return;  // no tool selected: `No tool selected!`
+  }
+  for (auto& [n, t] : s.tools) measure(t);
+}
+
 }  // namespace
 
 std::string_view allowed_axis_letters() { return kAxisOrder; }
@@ -458,6 +483,16 @@ void ModelBuilder::step(MachineState& s, NodeId id) const {
       if (n.call == CallKind::M501) s.running_m501 = false;
       return;
     case NodeKind::ToolSelect: {
+      if (e == 2 && n.index == UINT32_MAX && n.call_site != kNoNode) {
+        const Node& site = g_.nodes[n.call_site];
+        const Command& c = m_.unit(site.unit).parsed.commands[site.index];
+        if (c.has_number && c.number < 0) {  // T-1: no tool is selected afterwards
+          s.current_tool = -1;
+          s.current_tool_known = true;
+          s.current_tool_set = n.call_site;
+          return;
+        }
+      }
       if (e == 1 || n.index == UINT32_MAX) {
         s.current_tool_known = false;
         s.current_tool_set = n.call_site;
@@ -504,6 +539,7 @@ void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
       break;
     }
     case 558: do_m558(x); break;
+    case 585: do_m585(x); break;
     case 98: {
       // A macro whose path is an expression may do anything: what it could create is unknown from here on.
       auto P = get_string(x.pf, x.c, 'P');

@@ -50,6 +50,9 @@ struct Heater {
   NodeId monitor_origin = kNoNode;
   bool user_monitor = false;
   bool model_set = false;  // M307 seen
+  /// Over-temperature limit of each monitor (M143 P0–P2); -1 where that monitor is disabled or checks
+  /// something else (C1, C-1). `limit` is the highest of these, or 2000 when there is none.
+  std::array<double, 3> monitor_limits{-1, -1, -1};
 };
 
 struct Fan {

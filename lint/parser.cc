@@ -37,6 +37,15 @@ class LineParser {
   // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole.
   uint32_t skip_braces(uint32_t p, uint32_t e);
   uint32_t skip_blanks(uint32_t p, uint32_t e);
+  // Did a ';' cut an open expression at `e`, the end of the code? Only when the comment after it holds the
+  // `closer` the expression lacks: `X{a ; b}` is cut, `X{a ; note` just misses its '}'.
+  bool cut_by_semicolon(uint32_t e, char closer) const {
+    while (e < t_.size() && is_blank(t_[e])) ++e;
+    if (e >= t_.size() || t_[e] != ';') return false;
+    for (; e < t_.size() && t_[e] != '\n' && t_[e] != '\r' && t_[e] != '\0'; ++e)
+      if (t_[e] == closer) return true;
+    return false;
+  }
   void parse_meta(Line& line, MetaKind kind, uint32_t after_kw, uint32_t e);
   void parse_commands(Line& line, uint32_t b, uint32_t e);
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
@@ -95,13 +104,9 @@ uint32_t LineParser::skip_braces(uint32_t p, uint32_t e) {
     }
     ++p;
   }
-  // If a ';' cut the line, say so: it is the usual cause (RRF113).
-  uint32_t line_end = e;
-  while (line_end < t_.size() && t_[line_end] != '\n' && t_[line_end] != '\r' && t_[line_end] != '\0') ++line_end;
-  if (e < line_end && t_[e] == ';')
-    error(start, e, "unterminated '{': a ';' inside '{…}' ends the line, so the expression is cut short");
-  else
-    error(start, e, "unterminated '{': the expression has no closing '}'");
+  // A ';' that cut the line is RRF113's finding (semicolon-in-expression), not a syntax error.
+  if (cut_by_semicolon(e, '}')) out_.semicolon_cuts.push_back(Span{start, e});
+  else error(start, e, "unterminated '{': the expression has no closing '}'");
   return e;
 }
 
@@ -129,11 +134,9 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what)
     }
   }
   if (!stack.empty()) {
-    uint32_t line_end = e;
-    while (line_end < t_.size() && t_[line_end] != '\n' && t_[line_end] != '\r' && t_[line_end] != '\0') ++line_end;
-    bool cut = e < line_end && t_[e] == ';';
-    error(b, e, fmt::format("unclosed '{}' in {}{}", stack.back(), what,
-                            cut ? ": a ';' ends the line even inside an expression" : ""));
+    const char closer = stack.back() == '(' ? ')' : stack.back() == '[' ? ']' : '}';
+    if (cut_by_semicolon(e, closer)) out_.semicolon_cuts.push_back(Span{b, e});
+    else error(b, e, fmt::format("unclosed '{}' in {}", stack.back(), what));
   }
 }
 
@@ -438,6 +441,7 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
         }
       } else {
         cmd.number = static_cast<int32_t>(neg ? -n : n);
+        cmd.has_number = true;
       }
       if (p + 1 < e && t_[p] == '.' && is_digit(t_[p + 1])) {
         cmd.fraction = static_cast<int8_t>(t_[p + 1] - '0');

@@ -41,6 +41,7 @@ struct Command {
   int32_t number = -1;   // code number; -1 for `T` with no number; for T{expr} also -1
   int8_t fraction = -1;  // digit after '.', -1 if none
   bool number_expr = false;  // T{expr}
+  bool has_number = false;   // digits follow the letter: tells `T-1` (deselect) from a bare `T` (report)
   uint32_t line = 0;         // index into ParsedFile::lines
   uint32_t first_param = 0;
   uint32_t param_count = 0;
@@ -94,6 +95,9 @@ struct ParsedFile {
   std::vector<Command> commands;
   std::vector<Param> params;
   std::vector<ParseError> errors;
+  /// Expressions cut short by a ';' (RRF113 reports them, not syntax-error): from the '{' (or the start of a
+  /// meta-command expression) to the end of the code; the ';' follows after optional blanks.
+  std::vector<Span> semicolon_cuts;
   bool mixed_indentation = false;
 
   std::string_view text(Span s) const { return source->slice(s); }

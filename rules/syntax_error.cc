@@ -14,6 +14,7 @@ constexpr RuleMeta kMeta{
 Reports lines that RepRapFirmware rejects while reading them: unterminated strings or `{…}` expressions, a
 line that does not start with `G`, `M` or `T` (`Bad command`), `else`/`elif` without an `if` at the same
 indentation, `break`/`continue` outside a loop, malformed `var`/`global`/`set`, NUL and 0x7F bytes.
+An expression that a `;` cuts short (`X{a ; b}`) is reported once, by RRF113 semicolon-in-expression.
 
 ## Why is this bad?
 RRF reports the error on the live board and skips the line; for a meta command (`if`, `var`, `else` …) it

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <set>
 
 #include "render.h"
@@ -51,6 +52,41 @@ std::string sanitize(std::string_view s) {
     i += len;
   }
   return out;
+}
+
+std::string rule_url(std::string_view name) { return std::string(kDocsBase) + std::string(name) + ".md"; }
+
+std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix) {
+  if (fix.edits.empty() || fix.edits.front().loc.file == kNoFile) return std::nullopt;
+  const FileId file = fix.edits.front().loc.file;
+  std::vector<Edit> edits;
+  for (const Edit& e : fix.edits)
+    if (e.loc.file == file) edits.push_back(e);
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.loc.span.begin < b.loc.span.begin; });
+  const SourceFile& f = sm.get(file);
+  if (f.line_count() == 0) return std::nullopt;
+  const uint32_t line0 = f.line_of(std::min(edits.front().loc.span.begin, f.size()));
+  const Span ls = f.line_span(line0);
+  // The line with its terminator, plus whatever the edits that start on it reach into.
+  uint32_t end = ls.end + static_cast<uint32_t>(f.terminator(line0).size());
+  for (const Edit& e : edits)
+    if (e.loc.span.begin <= end) end = std::max(end, std::min(e.loc.span.end, f.size()));
+  std::string region(f.text().substr(ls.begin, end - ls.begin));
+  // Apply back to front so earlier offsets stay valid.
+  for (auto it = edits.rbegin(); it != edits.rend(); ++it) {
+    const Span s = it->loc.span;
+    if (s.begin < ls.begin || s.begin > end || s.end > end || s.end < s.begin) continue;
+    region.replace(s.begin - ls.begin, s.end - s.begin, it->replacement);
+  }
+  FixPreview p;
+  p.line = line0 + 1;
+  if (region.empty()) {
+    p.removed = true;
+    return p;
+  }
+  const size_t nl = region.find_first_of("\r\n");
+  p.text = region.substr(0, nl);
+  return p;
 }
 
 }  // namespace rrflint

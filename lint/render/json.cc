@@ -1,6 +1,6 @@
 // `json`: one document, {"version": 1, "diagnostics": [...], "summary": {...}}. The shape is a promise to
 // editor integrations: fields are only ever added. Lines and columns are 1-based, columns count code points,
-// ends are exclusive.
+// ends are exclusive. `diagnostic_json` is shared with `json-lines`.
 #include <nlohmann/json.hpp>
 
 #include "render.h"
@@ -20,6 +20,7 @@ nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d) {
   j["column"] = r.start.column;
   j["end_line"] = r.end.line;
   j["end_column"] = r.end.column;
+  j["url"] = rule_url(d.name);
   json notes = json::array();
   for (const Note& n : d.notes) {
     const Range nr = range_of(sm, n.loc);
@@ -27,6 +28,8 @@ nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d) {
     jn["file"] = n.loc.file == kNoFile ? "-" : sanitize(sm.get(n.loc.file).display_path());
     jn["line"] = nr.start.line;
     jn["column"] = nr.start.column;
+    jn["end_line"] = nr.end.line;
+    jn["end_column"] = nr.end.column;
     jn["message"] = sanitize(n.message);
     notes.push_back(jn);
   }
@@ -59,7 +62,8 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   doc["diagnostics"] = arr;
   const Counts c = count(diags);
   doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings}, {"infos", c.infos},
-                    {"fixable", c.fixable}, {"files_with_findings", c.files}, {"files_checked", o.files_checked}};
+                    {"fixable", c.fixable}, {"files_with_findings", c.files}, {"files_checked", o.files_checked},
+                    {"fixed", o.fixed}};
   os << doc.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
 }
 

@@ -1,6 +1,14 @@
 // Renderers: one format per file. Each takes the diagnostics of a run and the sources they point into.
+//   text.cc        the default human format: snippets with carets, notes, fix preview, summary, rule links
+//   text.cc        `concise`: one gcc-style line per finding
+//   json.cc        `json`: one versioned document        json_lines.cc  `json-lines`: one object per line
+//   sarif.cc       `sarif`: SARIF 2.1.0 for GitHub code scanning and editors
+//   github.cc      `github`: GitHub Actions workflow commands (annotations)
+//   rule_docs.cc   the Markdown pages of docs/rules/ and the README's rule list
 #pragma once
 
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -10,12 +18,21 @@
 
 namespace rrflint {
 
+/// Where each rule's page lives: docs/rules/<name>.md in the repository.
+inline constexpr std::string_view kDocsBase = "https://github.com/rrflint/rrflint/blob/main/docs/rules/";
+std::string rule_url(std::string_view name);
+
 struct RenderOptions {
   bool color = false;
   bool show_fix_hint = true;        // the "N fixable with --fix" part of the summary
   bool unsafe_fixes_enabled = false;
-  std::string docs_base = "https://github.com/rrflint/rrflint/blob/main/docs/rules/";
+  std::string docs_base = std::string(kDocsBase);
   size_t files_checked = 0;
+  size_t fixed = 0;                  // findings fixed by --fix before this report (text summary)
+  // SARIF: artifact URIs are relative to `uri_base` (the git top-level, else the working directory); display
+  // paths are relative to `cwd`. Both absolute; empty means the current directory.
+  std::filesystem::path uri_base;
+  std::filesystem::path cwd;
 };
 
 struct Counts {
@@ -32,7 +49,22 @@ Range range_of(const SourceManager& sm, const Location& loc);
 void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
 void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
 void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
+void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
+void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
+void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
+/// One diagnostic as the object `json` and `json-lines` print.
+nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d);
+
 /// Text with invalid UTF-8 replaced by U+FFFD and control characters escaped, safe for terminals and JSON.
 std::string sanitize(std::string_view s);
+
+/// The source line of an edit's start after applying the fix's edits to it (for the `help:` preview), with its
+/// 1-based line number; nullopt when the fix has no edit in a known file. Empty text: the line is removed.
+struct FixPreview {
+  uint32_t line = 0;
+  std::string text;
+  bool removed = false;
+};
+std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix);
 
 }  // namespace rrflint

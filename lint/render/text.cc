@@ -93,11 +93,27 @@ void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Di
     if (d.fix) {
       os << "  " << st("help:", "1;32") << " " << sanitize(d.fix->title)
          << (d.fix->applicability == Applicability::Unsafe ? " (unsafe fix: --unsafe-fixes)" : " (--fix)") << "\n";
+      // A one-line preview of the fixed line, diff-style: `+` the line after the fix, `-` a line it removes.
+      if (auto p = fix_preview(sm, *d.fix)) {
+        const SourceFile& f = sm.get(d.fix->edits.front().loc.file);
+        std::string shown = p->removed ? std::string(f.slice(f.line_span(p->line - 1))) : p->text;
+        std::string t = sanitize(shown);
+        for (char& c : t)
+          if (c == '\t') c = ' ';
+        if (t.size() > 200) {
+          size_t cut = 200;
+          while (cut > 0 && (static_cast<unsigned char>(t[cut]) & 0xC0) == 0x80) --cut;
+          t = t.substr(0, cut) + "…";
+        }
+        os << " " << st(std::to_string(p->line) + (p->removed ? " -" : " +"), p->removed ? "1;31" : "1;32") << " "
+           << st(t, p->removed ? "31" : "32") << "\n";
+      }
     }
     os << "\n";
     seen.emplace(d.code, d.name);
   }
   const Counts c = count(diags);
+  if (o.fixed) os << st(fmt::format("Fixed {} finding{}.", o.fixed, o.fixed == 1 ? "" : "s"), "1;32") << "\n";
   if (diags.empty()) {
     os << st("No problems found", "1;32")
        << (o.files_checked ? fmt::format(" in {} file{}", o.files_checked, o.files_checked == 1 ? "" : "s") : "")

@@ -1,0 +1,263 @@
+// `rrflint check`: plan the jobs, lint each machine with its own settings, apply fixes (--fix, --diff) or add
+// suppressions (--add-suppressions), render, and choose the exit code.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+
+#include "cli.h"
+#include "lint/render/render.h"
+#include "lint/suppress.h"
+
+namespace rrflint::cli {
+namespace {
+
+struct Totals {
+  std::vector<Diagnostic> diags;
+  size_t files = 0, fixed = 0, fixed_files = 0, suppressions = 0, suppressed_files = 0;
+  bool failing = false, io_error = false;
+  std::string diff;
+  std::optional<std::string> stdout_text;  // fixed or annotated stdin
+};
+
+// One job: lint, then the requested rewrite, then collect what is to be reported.
+bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
+             Totals& t) {
+  std::error_code ec;
+  if (job.excluded) {
+    // Excluded stdin: nothing to report, and --fix hands the text back unchanged (an editor must not lose it).
+    if ((co.fix || co.add_suppressions) && job.stdin_bytes) t.stdout_text = *job.stdin_bytes;
+    return true;
+  }
+  fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
+  if (dir.empty()) dir = fs::current_path(ec);
+  Effective eff;
+  if (!settings.effective(dir, eff)) return false;
+  JobReader reader(job);
+
+  auto reportable = [&](const SourceFile& f) {
+    const std::string sd = to_lower(f.sd_path());
+    if (!job.card) return true;
+    if (!job.report_all) return job.only.count(sd) > 0;
+    if (job.stdin_bytes && sd == to_lower(job.stdin_sd_path)) return true;
+    auto disk = reader.disk_path(f.sd_path());
+    if (!disk) return true;
+    const fs::path abs = fs::absolute(*disk, ec).lexically_normal();
+    return !settings.excluded(abs) && !gitignore.ignored(abs);
+  };
+
+  MachineResult r = lint_machine(sm, reader, eff.lint);
+  for (const LoadProblem& p : r.machine->problems()) {
+    warning(fmt::format("{}: {}", p.display, p.message));
+    if (job.only.count(to_lower(p.sd_path)) || !job.card) t.io_error = true;
+  }
+
+  // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds).
+  if (co.fix || co.diff) {
+    std::map<std::string, std::string> original, current;  // by SD path
+    std::map<std::string, std::string> display;
+    FixOptions fo;
+    fo.unsafe = co.unsafe_fixes;
+    for (int round = 0; round < fo.max_rounds; ++round) {
+      std::map<FileId, std::string> texts;
+      auto allowed = [&](FileId id) {
+        const SourceFile& f = sm.get(id);
+        return reportable(f) && (reader.disk_path(f.sd_path()) || job.stdin_bytes);
+      };
+      const size_t n = apply_fixes(sm, r.diagnostics, fo, allowed, texts);
+      if (n == 0) break;
+      t.fixed += n;
+      for (auto& [id, text] : texts) {
+        const SourceFile& f = sm.get(id);
+        original.try_emplace(f.sd_path(), f.text());
+        display[f.sd_path()] = f.display_path();
+        current[f.sd_path()] = text;
+        reader.set(f.sd_path(), text);
+      }
+      r = lint_machine(sm, reader, eff.lint);
+    }
+    for (const auto& [sd, text] : current) {
+      const std::string& before = original[sd];
+      if (before == text) continue;
+      ++t.fixed_files;
+      if (co.diff) {
+        t.diff += unified_diff(before, text, display[sd]);
+        continue;
+      }
+      auto disk = reader.disk_path(sd);
+      if (!disk) {
+        t.stdout_text = text;  // stdin: the fixed text goes to stdout
+        continue;
+      }
+      std::string err;
+      if (!write_atomic(*disk, before, text, &err)) {
+        error(fmt::format("{}: {}", display[sd], err));
+        t.io_error = true;
+      }
+    }
+    if (job.stdin_bytes && co.fix && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
+  }
+
+  // --add-suppressions: a same-line `; rrflint: disable=…` for every finding still reported.
+  if (co.add_suppressions) {
+    std::map<FileId, std::map<uint32_t, std::vector<std::string>>> by_file;
+    for (const Diagnostic& d : r.diagnostics) {
+      if (d.loc.file == kNoFile || d.code == "RRF900" || d.code == "RRF901") continue;
+      const SourceFile& f = sm.get(d.loc.file);
+      if (!reportable(f)) continue;
+      auto& names = by_file[d.loc.file][f.line_of(d.loc.span.begin)];
+      if (std::find(names.begin(), names.end(), std::string(d.name)) == names.end()) names.emplace_back(d.name);
+    }
+    for (uint32_t i = 0; i < r.machine->unit_count(); ++i) {
+      const FileUnit& u = r.machine->unit(i);
+      auto it = by_file.find(u.source->id());
+      if (it == by_file.end()) continue;
+      std::vector<Edit> edits = suppression_edits(u.parsed, it->second, *co.add_suppressions);
+      std::string text(u.source->text());
+      const std::string before = text;
+      apply_edits(text, edits);
+      if (text == before) continue;
+      for (const auto& [line, names] : it->second) t.suppressions += names.size();
+      ++t.suppressed_files;
+      auto disk = reader.disk_path(u.sd_path);
+      if (!disk) {
+        t.stdout_text = text;
+        continue;
+      }
+      std::string err;
+      if (!write_atomic(*disk, before, text, &err)) {
+        error(fmt::format("{}: {}", u.source->display_path(), err));
+        t.io_error = true;
+      }
+    }
+    if (job.stdin_bytes && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
+    return true;
+  }
+
+  for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+    if (reportable(*r.machine->unit(i).source)) ++t.files;
+  for (Diagnostic& d : r.diagnostics) {
+    if (d.loc.file != kNoFile && !reportable(sm.get(d.loc.file))) continue;
+    t.failing = t.failing || d.severity >= eff.fail_on;
+    t.diags.push_back(std::move(d));
+  }
+  if (co.verbose) {
+    const Target& tg = r.target;
+    std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
+    for (const Evidence& e : tg.evidence)
+      std::cerr << fmt::format("rrflint:   evidence: {} ({}:{})\n", e.what, sm.get(e.loc.file).display_path(),
+                               sm.get(e.loc.file).position(e.loc.span.begin).line);
+    if (eff.config) std::cerr << "rrflint:   config: " << Origin{Origin::Kind::File, eff.config->files.back(), 0}.str() << "\n";
+  }
+  return true;
+}
+
+}  // namespace
+
+bool use_color(const std::string& mode, int fd) {
+  if (mode == "always") return true;
+  if (mode == "never") return false;
+  if (const char* f = std::getenv("FORCE_COLOR"); f && *f && std::string(f) != "0") return true;
+  if (const char* n = std::getenv("NO_COLOR"); n && *n) return false;
+  if (const char* t = std::getenv("TERM"); t && std::string(t) == "dumb") return false;
+  return isatty(fd);
+}
+
+int run_check(const CliOptions& cli, const CheckOptions& co) {
+  if (co.add_suppressions && (co.fix || co.diff)) {
+    error("--add-suppressions cannot be combined with --fix or --diff");
+    return kExitError;
+  }
+  Settings settings(cli);
+  std::vector<Job> jobs;
+  bool io_error = false;
+  std::vector<std::string> paths = co.paths;
+  if (paths.empty()) paths.push_back(".");
+  plan(paths, co.plan, settings, jobs, io_error);
+  if (settings.config_error()) {
+    error(settings.config_error()->str());
+    return kExitError;
+  }
+
+  std::string format = co.format;
+  if (!co.format_given)
+    if (const char* gh = std::getenv("GITHUB_ACTIONS"); gh && std::string(gh) == "true") format = "github";
+
+  SourceManager sm;
+  Totals t;
+  GitIgnore gitignore;
+  for (const Job& j : jobs) {
+    if (!run_job(j, co, settings, gitignore, sm, t)) {
+      if (settings.config_error()) error(settings.config_error()->str());
+      return kExitError;
+    }
+  }
+  io_error = io_error || t.io_error;
+
+  if (co.add_suppressions) {
+    if (t.stdout_text) std::cout << *t.stdout_text;
+    std::cerr << fmt::format("rrflint: added {} suppression{} to {} file{}\n", t.suppressions,
+                             t.suppressions == 1 ? "" : "s", t.suppressed_files, t.suppressed_files == 1 ? "" : "s");
+    return io_error ? kExitError : kExitClean;
+  }
+
+  std::ofstream file_out;
+  std::ostream* os = &std::cout;
+  if (!co.output_file.empty()) {
+    file_out.open(co.output_file, std::ios::binary);
+    if (!file_out) {
+      error(fmt::format("{}: cannot write", co.output_file));
+      return kExitError;
+    }
+    os = &file_out;
+  }
+
+  if (co.diff) {
+    *os << t.diff;
+    os->flush();
+    if (t.fixed_files)
+      std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}\n", t.fixed, t.fixed == 1 ? "" : "s",
+                               t.fixed_files, t.fixed_files == 1 ? "" : "s");
+    else
+      std::cerr << "rrflint: no fixes to apply\n";
+    if (io_error) return kExitError;
+    return t.fixed_files ? kExitFindings : kExitClean;
+  }
+
+  // The fixed stdin text owns stdout; the report then goes to stderr.
+  if (t.stdout_text && co.output_file.empty()) {
+    std::cout << *t.stdout_text;
+    std::cout.flush();
+    os = &std::cerr;
+  }
+
+  // Stable order across machines: by path, then position.
+  std::stable_sort(t.diags.begin(), t.diags.end(), [&](const Diagnostic& a, const Diagnostic& b) {
+    const std::string& fa = a.loc.file == kNoFile ? std::string() : sm.get(a.loc.file).display_path();
+    const std::string& fb = b.loc.file == kNoFile ? std::string() : sm.get(b.loc.file).display_path();
+    if (fa != fb) return fa < fb;
+    return std::tie(a.loc.span.begin, a.code) < std::tie(b.loc.span.begin, b.code);
+  });
+  std::error_code ec;
+  RenderOptions ro;
+  ro.files_checked = t.files;
+  ro.fixed = t.fixed;
+  ro.unsafe_fixes_enabled = co.unsafe_fixes;
+  ro.cwd = fs::current_path(ec);
+  ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);
+  if (!co.output_file.empty()) ro.color = co.color == "always";
+  else ro.color = use_color(co.color, os == &std::cerr ? fileno(stderr) : fileno(stdout));
+  if (format == "json") render_json(*os, sm, t.diags, ro);
+  else if (format == "json-lines") render_json_lines(*os, sm, t.diags, ro);
+  else if (format == "sarif") render_sarif(*os, sm, t.diags, ro);
+  else if (format == "github") render_github(*os, sm, t.diags, ro);
+  else if (format == "concise") render_concise(*os, sm, t.diags, ro);
+  else render_text(*os, sm, t.diags, ro);
+  os->flush();
+  if (io_error) return kExitError;
+  return t.failing && !co.exit_zero ? kExitFindings : kExitClean;
+}
+
+}  // namespace rrflint::cli

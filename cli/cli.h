@@ -1,0 +1,189 @@
+// The command-line front end, shared declarations. Argument parsing and dispatch are in main.cc; the
+// subcommands and their helpers live one concern per file:
+//   settings.cc  config files + command line -> LintOptions per machine; `rrflint config`
+//   inputs.cc    command-line paths -> jobs (one per machine): repository walk, .gitignore, exclude
+//   check.cc     `rrflint check`: lint, --fix/--diff/--add-suppressions, render, exit code
+//   fix.cc       the fix loop, atomic writes, unified diffs
+//   rules_cmd.cc `rrflint rule`: docs, JSON metadata, --generate-docs
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lint/config.h"
+#include "lint/disk.h"
+#include "lint/linter.h"
+
+namespace rrflint::cli {
+
+namespace fs = std::filesystem;
+
+constexpr int kExitClean = 0, kExitFindings = 1, kExitError = 2;
+
+void error(const std::string& msg);
+void warning(const std::string& msg);
+
+/// What the command line says, before any config file is read.
+struct CliOptions {
+  std::string firmware, board, fail_on;  // empty: not given
+  std::vector<std::string> select, extend_select, ignore;
+  bool select_given = false, extend_select_given = false, ignore_given = false;
+  bool tool_changer = false;
+  std::string config_path;  // --config
+  bool isolated = false;    // --isolated
+  bool no_inline_suppressions = false;
+};
+
+/// The settings of one machine (or lone file): LintOptions plus what only the front end uses.
+struct Effective {
+  LintOptions lint;
+  Severity fail_on = Severity::Warning;
+  std::shared_ptr<const Config> config;  // null: no config file
+  std::vector<std::string> problems;     // unknown rule names on the command line
+};
+
+/// Resolves config files (discovery, --config, --isolated) and merges them with the command line.
+class Settings {
+ public:
+  explicit Settings(const CliOptions& cli) : cli_(cli) {}
+  /// The config that governs files in `dir` (null when none). Sets error() on a bad config file.
+  std::shared_ptr<const Config> config_for(const fs::path& dir);
+  /// The settings for a machine whose files start at `dir`. False on a config or option error.
+  bool effective(const fs::path& dir, Effective& out);
+  /// Is `abs` excluded by the `exclude` patterns of the config that governs it? `why` gets the pattern.
+  bool excluded(const fs::path& abs, std::string* why = nullptr);
+  const std::optional<ConfigError>& config_error() const { return error_; }
+  const CliOptions& cli() const { return cli_; }
+
+ private:
+  const CliOptions& cli_;
+  std::map<std::string, std::shared_ptr<const Config>> loaded_;      // config file -> contents
+  std::map<std::string, std::optional<fs::path>> found_;             // folder -> nearest config file
+  std::optional<ConfigError> error_;
+};
+
+/// Rule selection explained: for each rule, on or off and the setting that decided it.
+struct RuleDecision {
+  const Rule* rule;
+  bool on;
+  Origin origin;
+  std::string why;  // "default", "select", "extend-select", "ignore"
+};
+std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli);
+
+/// `rrflint config [PATH]`.
+int run_config(const CliOptions& cli, const std::string& path);
+
+/// One machine to lint: a card on disk, or a lone file (or stdin).
+struct Job {
+  std::optional<CardLocation> card;
+  fs::path standalone;                     // a lone file
+  std::set<std::string> only;              // lower-cased SD paths to report, unless report_all
+  bool report_all = false;                 // every file of the card (minus exclusions and .gitignore)
+  std::optional<std::string> stdin_bytes;  // content for `-`
+  std::string stdin_sd_path;
+  std::string title;
+  bool explicit_path = false;              // named on the command line (exclusions only with --force-exclude)
+  bool excluded = false;                   // stdin excluded by --force-exclude: not linted (--fix echoes it)
+};
+
+struct PlanOptions {
+  std::string stdin_filename;
+  bool force_exclude = false;
+  bool respect_gitignore = true;
+};
+
+/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths.
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
+          bool& io_error);
+
+/// Is this file ignored by git (or, without git, by the .gitignore files above it)?
+class GitIgnore {
+ public:
+  /// Answers for many files at once (one `git check-ignore` per repository).
+  void prefetch(const std::vector<fs::path>& files);
+  bool ignored(const fs::path& abs);
+
+ private:
+  std::map<std::string, bool> cache_;
+  std::map<std::string, std::vector<std::pair<std::string, bool>>> patterns_;  // folder -> (pattern, negated)
+  bool fallback_ignored(const fs::path& abs);
+};
+
+/// The FileReader of a job, with in-memory replacements (fixed text) on top.
+class JobReader : public FileReader {
+ public:
+  explicit JobReader(const Job& job);
+  ReadResult read(std::string_view sd_path) override;
+  std::vector<std::string> list(std::string_view sd_dir) override;
+  void set(const std::string& sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
+  /// The file on disk behind an SD path (nullopt for stdin or unknown).
+  std::optional<fs::path> disk_path(std::string_view sd_path) const;
+
+ private:
+  const Job& job_;
+  std::unique_ptr<DiskReader> disk_;
+  std::string lone_sd_, lone_display_;
+  std::optional<std::string> lone_bytes_;
+  std::map<std::string, std::string> overlay_;
+};
+
+// ---- fix.cc ----
+
+struct FixOptions {
+  bool unsafe = false;
+  int max_rounds = 10;
+};
+
+/// Picks non-overlapping fixes (whole fixes, never part of one) among `diags` that `allowed` accepts, applies
+/// them to `texts` (by FileId), keeping each file's line-ending style. Returns how many fixes were applied.
+size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
+                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts);
+
+/// Writes `bytes` to `path` without ever leaving it half written: a temporary file in the same folder, then a
+/// rename. Refuses (returns false with `err`) when the file changed on disk since `expected` was read.
+bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes, std::string* err);
+
+/// A unified diff (`--- a/x`, `+++ b/x`, 3 lines of context); empty when the texts are equal.
+std::string unified_diff(std::string_view before, std::string_view after, const std::string& path);
+
+// ---- check.cc ----
+
+struct CheckOptions {
+  std::vector<std::string> paths;
+  std::string format = "text";
+  bool format_given = false;
+  std::string color = "auto";
+  std::string output_file;
+  bool exit_zero = false, verbose = false;
+  bool fix = false, unsafe_fixes = false, diff = false;
+  std::optional<std::string> add_suppressions;  // the reason (may be empty)
+  PlanOptions plan;
+};
+
+int run_check(const CliOptions& cli, const CheckOptions& co);
+/// Colour for `--color MODE` on file descriptor `fd`: always/never, else FORCE_COLOR, NO_COLOR, TERM=dumb, a tty.
+bool use_color(const std::string& mode, int fd);
+
+// ---- rules_cmd.cc ----
+
+struct RuleOptions {
+  std::string name;
+  bool all = false;
+  std::string format = "text";
+  std::string generate_dir;  // --generate-docs DIR
+  std::string readme;        // --readme FILE: also rewrite its rule list
+  bool check = false;        // --check: only report stale files (exit 1)
+};
+int run_rule(const RuleOptions& ro);
+
+/// The git top-level folder holding `dir`, found by looking for `.git`; nullopt outside a repository.
+std::optional<fs::path> repo_root(const fs::path& dir);
+
+}  // namespace rrflint::cli

@@ -1,0 +1,231 @@
+// Applying fixes: conflict-free selection (whole fixes only), line-ending preservation, atomic writes that
+// never lose data, and unified diffs for --diff.
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <tuple>
+
+#include "cli.h"
+
+namespace rrflint::cli {
+namespace {
+
+// The line ending most of the file uses; "\n" when it has none.
+std::string_view dominant_eol(const SourceFile& f) {
+  const LineEndings& e = f.endings();
+  if (e.crlf > e.lf && e.crlf >= e.cr) return "\r\n";
+  if (e.cr > e.lf && e.cr > e.crlf) return "\r";
+  return "\n";
+}
+
+// Inserted text written with "\n" gets the file's own line ending (a rule need not know it).
+std::string with_eol(const std::string& s, std::string_view eol) {
+  if (eol == "\n" || s.find('\r') != std::string::npos || s.find('\n') == std::string::npos) return s;
+  std::string out;
+  for (char c : s) {
+    if (c == '\n') out += eol;
+    else out += c;
+  }
+  return out;
+}
+
+}  // namespace
+
+size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
+                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts) {
+  std::map<FileId, std::vector<Span>> taken;
+  std::map<FileId, std::vector<Edit>> accepted;
+  size_t applied = 0;
+  for (const Diagnostic& d : diags) {
+    if (!d.fix || d.fix->edits.empty()) continue;
+    if (d.fix->applicability == Applicability::Unsafe && !fo.unsafe) continue;
+    bool ok = true;
+    for (const Edit& e : d.fix->edits) {
+      if (e.loc.file == kNoFile || !allowed(e.loc.file) || e.loc.span.end < e.loc.span.begin ||
+          e.loc.span.end > sm.get(e.loc.file).size()) {
+        ok = false;
+        break;
+      }
+      // Overlap with an accepted edit (touching insertions at the same point also conflict: order unknown).
+      for (const Span& s : taken[e.loc.file]) {
+        const bool overlap = e.loc.span.begin < s.end && s.begin < e.loc.span.end;
+        const bool same_point = (e.loc.span.empty() && (e.loc.span.begin == s.end || e.loc.span.begin == s.begin)) ||
+                                (s.empty() && (s.begin == e.loc.span.end || s.begin == e.loc.span.begin));
+        if (overlap || same_point) ok = false;
+      }
+      if (!ok) break;
+    }
+    if (!ok) continue;  // left for the next round
+    for (const Edit& e : d.fix->edits) {
+      taken[e.loc.file].push_back(e.loc.span);
+      Edit copy = e;
+      copy.replacement = with_eol(e.replacement, dominant_eol(sm.get(e.loc.file)));
+      accepted[e.loc.file].push_back(std::move(copy));
+    }
+    ++applied;
+  }
+  for (auto& [file, edits] : accepted) {
+    std::string& text = texts.try_emplace(file, sm.get(file).text()).first->second;
+    std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+      return std::tie(a.loc.span.begin, a.loc.span.end) < std::tie(b.loc.span.begin, b.loc.span.end);
+    });
+    // Back to front, so earlier offsets stay valid.
+    for (auto it = edits.rbegin(); it != edits.rend(); ++it)
+      text.replace(it->loc.span.begin, it->loc.span.size(), it->replacement);
+  }
+  return applied;
+}
+
+bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes, std::string* err) {
+  std::error_code ec;
+  // Write through a symbolic link to its target rather than replacing the link.
+  const fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, ec) : path;
+  std::string now_err;
+  auto now = read_file(target, &now_err);
+  if (!now || *now != expected) {
+    if (err) *err = now ? "changed on disk while rrflint was running; not written" : now_err;
+    return false;
+  }
+  struct stat st {};
+  const bool have_mode = ::stat(target.c_str(), &st) == 0;
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::string tmpl = (dir / ("." + target.filename().string() + ".rrflint-XXXXXX")).string();
+  int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) {
+    if (err) *err = fmt::format("cannot create a temporary file in {}: {}", dir.string(), std::strerror(errno));
+    return false;
+  }
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
+  }
+  bool ok = done == bytes.size() && ::fsync(fd) == 0;
+  if (have_mode) ok = ok && ::fchmod(fd, st.st_mode & 07777) == 0;
+  ok = ::close(fd) == 0 && ok;
+  if (!ok || ::rename(tmpl.c_str(), target.c_str()) != 0) {
+    if (err) *err = fmt::format("cannot write: {}", std::strerror(errno));
+    ::unlink(tmpl.c_str());
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// Lines with their terminators, so a diff reproduces the bytes exactly.
+std::vector<std::string_view> split_keep(std::string_view s) {
+  std::vector<std::string_view> out;
+  size_t b = 0;
+  while (b < s.size()) {
+    size_t e = b;
+    while (e < s.size() && s[e] != '\n' && s[e] != '\r') ++e;
+    if (e < s.size()) e += (s[e] == '\r' && e + 1 < s.size() && s[e + 1] == '\n') ? 2 : 1;
+    out.push_back(s.substr(b, e - b));
+    b = e;
+  }
+  return out;
+}
+
+struct Op {
+  char kind;  // ' ', '-', '+'
+  size_t a, b;  // line indices in before/after
+};
+
+// The edit script between two line lists: common prefix and suffix, then an LCS table on the middle (bounded;
+// a huge middle is shown as one replaced block).
+std::vector<Op> diff_ops(const std::vector<std::string_view>& a, const std::vector<std::string_view>& b) {
+  size_t pre = 0;
+  while (pre < a.size() && pre < b.size() && a[pre] == b[pre]) ++pre;
+  size_t suf = 0;
+  while (suf < a.size() - pre && suf < b.size() - pre && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+  const size_t n = a.size() - pre - suf, m = b.size() - pre - suf;
+  std::vector<Op> ops;
+  for (size_t i = 0; i < pre; ++i) ops.push_back({' ', i, i});
+  if (n * m <= 4'000'000) {
+    std::vector<std::vector<uint32_t>> L(n + 1, std::vector<uint32_t>(m + 1, 0));
+    for (size_t i = n; i-- > 0;)
+      for (size_t j = m; j-- > 0;)
+        L[i][j] = a[pre + i] == b[pre + j] ? L[i + 1][j + 1] + 1 : std::max(L[i + 1][j], L[i][j + 1]);
+    size_t i = 0, j = 0;
+    while (i < n || j < m) {
+      if (i < n && j < m && a[pre + i] == b[pre + j]) {
+        ops.push_back({' ', pre + i, pre + j});
+        ++i, ++j;
+      } else if (i < n && (j == m || L[i + 1][j] >= L[i][j + 1])) {
+        ops.push_back({'-', pre + i, pre + j});  // removals first, as diff(1) prints them
+        ++i;
+      } else {
+        ops.push_back({'+', pre + i, pre + j});
+        ++j;
+      }
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) ops.push_back({'-', pre + i, pre});
+    for (size_t j = 0; j < m; ++j) ops.push_back({'+', pre + n, pre + j});
+  }
+  for (size_t k = 0; k < suf; ++k) ops.push_back({' ', a.size() - suf + k, b.size() - suf + k});
+  return ops;
+}
+
+void emit_line(std::string& out, char kind, std::string_view line) {
+  out += kind;
+  if (line.ends_with("\r\n") || line.ends_with("\n") || line.ends_with("\r")) {
+    out += line;
+    if (line.ends_with("\r")) out += '\n';  // keep the diff itself line-based
+  } else {
+    out += line;
+    out += "\n\\ No newline at end of file\n";
+  }
+}
+
+}  // namespace
+
+std::string unified_diff(std::string_view before, std::string_view after, const std::string& path) {
+  if (before == after) return "";
+  const auto a = split_keep(before), b = split_keep(after);
+  const std::vector<Op> ops = diff_ops(a, b);
+  constexpr size_t kContext = 3;
+  std::string out = fmt::format("--- a/{}\n+++ b/{}\n", path, path);
+  size_t k = 0;
+  while (k < ops.size()) {
+    if (ops[k].kind == ' ') {
+      ++k;
+      continue;
+    }
+    // A hunk: from kContext lines before this change to kContext lines after the last change that is at most
+    // 2*kContext unchanged lines away.
+    size_t start = k >= kContext ? k - kContext : 0;
+    size_t end = k;
+    size_t last_change = k;
+    while (end < ops.size()) {
+      if (ops[end].kind != ' ') last_change = end;
+      else if (end - last_change > 2 * kContext) break;
+      ++end;
+    }
+    end = std::min(ops.size(), last_change + kContext + 1);
+    size_t a_start = ops[start].a, b_start = ops[start].b, a_len = 0, b_len = 0;
+    for (size_t i = start; i < end; ++i) {
+      if (ops[i].kind != '+') ++a_len;
+      if (ops[i].kind != '-') ++b_len;
+    }
+    auto range = [](size_t s, size_t len) {
+      return len == 1 ? fmt::format("{}", s + 1) : fmt::format("{},{}", len == 0 ? s : s + 1, len);
+    };
+    out += fmt::format("@@ -{} +{} @@\n", range(a_start, a_len), range(b_start, b_len));
+    for (size_t i = start; i < end; ++i) {
+      const Op& op = ops[i];
+      emit_line(out, op.kind, op.kind == '+' ? b[op.b] : a[op.a]);
+    }
+    k = end;
+  }
+  return out;
+}
+
+}  // namespace rrflint::cli

@@ -1,0 +1,229 @@
+// Config files + command line -> the settings of each machine, and `rrflint config` which shows them with
+// where each one came from.
+#include <fmt/format.h>
+
+#include <iostream>
+
+#include "cli.h"
+#include "lint/rule.h"
+
+namespace rrflint::cli {
+namespace {
+
+std::string quoted_list(const std::vector<std::string>& v) {
+  std::string out = "[";
+  for (size_t i = 0; i < v.size(); ++i) out += fmt::format("{}\"{}\"", i ? ", " : "", v[i]);
+  return out + "]";
+}
+
+}  // namespace
+
+void error(const std::string& msg) { std::cerr << "rrflint: error: " << msg << "\n"; }
+void warning(const std::string& msg) { std::cerr << "rrflint: warning: " << msg << "\n"; }
+
+std::shared_ptr<const Config> Settings::config_for(const fs::path& dir) {
+  if (cli_.isolated) return nullptr;
+  std::error_code ec;
+  std::optional<fs::path> file;
+  if (!cli_.config_path.empty()) {
+    file = fs::absolute(cli_.config_path, ec);
+  } else {
+    const std::string key = fs::absolute(dir, ec).lexically_normal().string();
+    auto it = found_.find(key);
+    if (it == found_.end()) it = found_.emplace(key, find_config(dir)).first;
+    file = it->second;
+  }
+  if (!file) return nullptr;
+  const std::string key = file->lexically_normal().string();
+  if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
+  ConfigError err;
+  auto cfg = load_config(*file, &err);
+  if (!cfg) {
+    if (!error_) error_ = err;
+    loaded_[key] = nullptr;
+    return nullptr;
+  }
+  auto ptr = std::make_shared<const Config>(std::move(*cfg));
+  loaded_[key] = ptr;
+  return ptr;
+}
+
+std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli) {
+  std::vector<RuleDecision> out;
+  for (const Rule* r : all_rules()) out.push_back({r, r->meta.default_enabled, Origin{}, "default"});
+  auto apply = [&](const SelectionLayer& layer) {
+    if (layer.select.value) {
+      const auto codes = selector_codes(*layer.select.value);
+      for (RuleDecision& d : out) {
+        d.on = std::find(codes.begin(), codes.end(), d.rule->meta.code) != codes.end();
+        d.origin = layer.select.origin;
+        d.why = d.on ? "select" : "not in select";
+      }
+    }
+    if (layer.extend_select.value)
+      for (const std::string& c : selector_codes(*layer.extend_select.value))
+        for (RuleDecision& d : out)
+          if (d.rule->meta.code == c) d = {d.rule, true, layer.extend_select.origin, "extend-select"};
+    if (layer.ignore.value)
+      for (const std::string& c : selector_codes(*layer.ignore.value))
+        for (RuleDecision& d : out)
+          if (d.rule->meta.code == c) d = {d.rule, false, layer.ignore.origin, "ignore"};
+  };
+  if (cfg)
+    for (const SelectionLayer& l : cfg->selection) apply(l);
+  SelectionLayer cl;
+  if (cli.select_given) cl.select = {cli.select, Origin::command_line()};
+  if (cli.extend_select_given) cl.extend_select = {cli.extend_select, Origin::command_line()};
+  if (cli.ignore_given) cl.ignore = {cli.ignore, Origin::command_line()};
+  apply(cl);
+  return out;
+}
+
+bool Settings::effective(const fs::path& dir, Effective& out) {
+  out = Effective{};
+  out.config = config_for(dir);
+  if (error_) return false;
+  const Config* cfg = out.config.get();
+  std::vector<std::string> on;
+  for (const RuleDecision& d : decide_rules(cfg, cli_))
+    if (d.on) on.emplace_back(d.rule->meta.code);
+  if (on.empty()) {
+    out.lint.select = {"ALL"};
+    out.lint.ignore = {"ALL"};
+  } else {
+    out.lint.select = on;
+  }
+  if (!cli_.firmware.empty()) out.lint.firmware = Version::parse(cli_.firmware);
+  else if (cfg && cfg->firmware.value) out.lint.firmware = cfg->firmware.value;
+  if (!cli_.board.empty()) out.lint.board = parse_board(cli_.board);
+  else if (cfg && cfg->board.value) out.lint.board = cfg->board.value;
+  if (!cli_.fail_on.empty()) out.fail_on = *parse_severity(cli_.fail_on);
+  else if (cfg && cfg->fail_on.value) out.fail_on = *cfg->fail_on.value;
+  out.lint.tool_changer = cli_.tool_changer || (cfg && cfg->tool_changer.value && *cfg->tool_changer.value);
+  if (cfg)
+    for (const auto& [code, s] : cfg->severity) out.lint.severity[code] = *s.value;
+  out.lint.inline_suppressions = !cli_.no_inline_suppressions;
+  if (cfg && !cfg->per_file_ignores.empty()) {
+    std::error_code ec;
+    const fs::path cwd = fs::current_path(ec);
+    std::shared_ptr<const Config> keep = out.config;
+    out.lint.ignored_in_file = [keep, cwd](const SourceFile& f, std::string_view code) {
+      const fs::path display(f.display_path());
+      const fs::path abs = display.is_absolute() ? display : cwd / display;
+      std::string sd = f.sd_path();
+      if (sd.starts_with("/")) sd.erase(0, 1);
+      for (const PathPattern& p : keep->per_file_ignores) {
+        if (std::find(p.codes.begin(), p.codes.end(), code) == p.codes.end()) continue;
+        auto rel = relative_below(abs, p.base);
+        if ((rel && pattern_applies(p.glob, *rel)) || (!sd.empty() && pattern_applies(p.glob, sd))) return true;
+      }
+      return false;
+    };
+  }
+  return true;
+}
+
+bool Settings::excluded(const fs::path& abs, std::string* why) {
+  auto cfg = config_for(abs.parent_path());
+  if (!cfg) return false;
+  for (const PathPattern& p : cfg->exclude) {
+    auto rel = relative_below(abs, p.base);
+    if (rel && pattern_applies(p.glob, *rel)) {
+      if (why) *why = fmt::format("'{}' ({})", p.glob, p.origin.str());
+      return true;
+    }
+  }
+  return false;
+}
+
+int run_config(const CliOptions& cli, const std::string& path_arg) {
+  std::error_code ec;
+  const fs::path path = fs::absolute(path_arg.empty() ? "." : path_arg, ec).lexically_normal();
+  if (!fs::exists(path, ec)) {
+    error(fmt::format("{}: no such file or directory", path_arg));
+    return kExitError;
+  }
+  fs::path dir = fs::is_directory(path, ec) ? path : path.parent_path();
+  if (auto card = card_at(dir)) dir = card->sys_dir;  // a machine's settings are found from its sys folder
+  Settings settings(cli);
+  Effective eff;
+  if (!settings.effective(dir, eff)) {
+    error(settings.config_error()->str());
+    return kExitError;
+  }
+  const Config* cfg = eff.config.get();
+  std::ostream& os = std::cout;
+  auto row = [&](std::string_view key, const std::string& value, const std::string& origin) {
+    os << fmt::format("{:<20} = {:<28} # {}\n", key, value, origin);
+  };
+  os << fmt::format("# settings for {}\n", path_arg.empty() ? "." : path_arg);
+  if (cli.isolated) os << "# config file: none (--isolated)\n";
+  else if (!cfg) os << "# config file: none found (searched from " << dir.generic_string() << " upward)\n";
+  else {
+    os << "# config file: " << Origin{Origin::Kind::File, cfg->files.back(), 0}.str() << "\n";
+    for (size_t i = cfg->files.size() - 1; i-- > 0;)
+      os << "#   extends: " << Origin{Origin::Kind::File, cfg->files[i], 0}.str() << "\n";
+  }
+  auto origin_of = [&](bool cli_given, auto& setting) {
+    if (cli_given) return std::string("command line");
+    if (cfg && setting.value) return setting.origin.str();
+    return std::string("default");
+  };
+  Setting<Version> no_v;
+  Setting<Board> no_b;
+  Setting<Severity> no_s;
+  Setting<bool> no_t;
+  row("firmware", eff.lint.firmware ? fmt::format("\"{}\"", eff.lint.firmware->str()) : "(inferred from the files)",
+      origin_of(!cli.firmware.empty(), cfg ? cfg->firmware : no_v));
+  row("board", eff.lint.board ? fmt::format("\"{}\"", board_name(*eff.lint.board)) : "(inferred from the files)",
+      origin_of(!cli.board.empty(), cfg ? cfg->board : no_b));
+  row("fail-on", fmt::format("\"{}\"", severity_name(eff.fail_on)), origin_of(!cli.fail_on.empty(), cfg ? cfg->fail_on : no_s));
+  row("machine.tool-changer", eff.lint.tool_changer ? "true" : "false",
+      origin_of(cli.tool_changer, cfg ? cfg->tool_changer : no_t));
+  row("inline suppressions", eff.lint.inline_suppressions ? "on" : "off",
+      cli.no_inline_suppressions ? "command line" : "default");
+  if (cfg) {
+    for (const SelectionLayer& l : cfg->selection) {
+      if (l.select.value) row("select", quoted_list(*l.select.value), l.select.origin.str());
+      if (l.extend_select.value) row("extend-select", quoted_list(*l.extend_select.value), l.extend_select.origin.str());
+      if (l.ignore.value) row("ignore", quoted_list(*l.ignore.value), l.ignore.origin.str());
+    }
+    for (const PathPattern& p : cfg->exclude) row("exclude", fmt::format("\"{}\"", p.glob), p.origin.str());
+    for (const PathPattern& p : cfg->per_file_ignores)
+      row(fmt::format("per-file-ignores"), fmt::format("\"{}\" = {}", p.glob, quoted_list(p.codes)), p.origin.str());
+    for (const auto& [code, s] : cfg->severity)
+      row(fmt::format("severity.{}", code), fmt::format("\"{}\"", severity_name(*s.value)), s.origin.str());
+  }
+  if (cli.select_given) row("select", quoted_list(cli.select), "command line");
+  if (cli.extend_select_given) row("extend-select", quoted_list(cli.extend_select), "command line");
+  if (cli.ignore_given) row("ignore", quoted_list(cli.ignore), "command line");
+  if (!fs::is_directory(path, ec)) {
+    std::string why;
+    if (settings.excluded(path, &why)) os << "# this file is excluded by " << why << "\n";
+    if (cfg)
+      for (const PathPattern& p : cfg->per_file_ignores) {
+        auto rel = relative_below(path, p.base);
+        if (rel && pattern_applies(p.glob, *rel))
+          os << fmt::format("# per-file-ignores \"{}\" ({}) applies to this file: {}\n", p.glob, p.origin.str(),
+                            quoted_list(p.codes));
+      }
+  }
+  const auto decisions = decide_rules(cfg, cli);
+  size_t n_on = 0;
+  for (const RuleDecision& d : decisions) n_on += d.on;
+  os << fmt::format("\n# rules: {} of {} enabled\n", n_on, decisions.size());
+  for (const RuleDecision& d : decisions) {
+    std::string sev(severity_name(d.rule->meta.severity));
+    std::string sev_origin;
+    if (cfg)
+      if (auto it = cfg->severity.find(std::string(d.rule->meta.code)); it != cfg->severity.end()) {
+        sev = std::string(severity_name(*it->second.value));
+        sev_origin = fmt::format(", severity from {}", it->second.origin.str());
+      }
+    os << fmt::format("{:<7} {:<38} {:<4} {:<8} # {}{}{}\n", d.rule->meta.code, d.rule->meta.name, d.on ? "on" : "off",
+                      sev, d.why, d.origin.kind == Origin::Kind::Default ? "" : " at " + d.origin.str(), sev_origin);
+  }
+  return kExitClean;
+}
+
+}  // namespace rrflint::cli

@@ -1,0 +1,29 @@
+// The rule documentation generated from the registry: one Markdown page per rule (docs/rules/<name>.md), an
+// index (docs/rules/README.md) and the rule list of the top-level README (between `<!-- rules:begin -->` and
+// `<!-- rules:end -->`). `rrflint rule --generate-docs` writes them; a test fails when a checked-in copy is stale.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace rrflint {
+
+struct Rule;
+
+inline constexpr std::string_view kRulesBegin = "<!-- rules:begin -->";
+inline constexpr std::string_view kRulesEnd = "<!-- rules:end -->";
+
+/// The page of one rule (also what `rrflint rule NAME` prints).
+std::string rule_page(const Rule& r);
+/// docs/rules/README.md: every rule, grouped by code block, linking to the pages.
+std::string rule_index();
+/// The README's rule list (the text between the markers, markers excluded).
+std::string readme_rule_list();
+/// Every generated file of docs/rules, by file name.
+std::map<std::string, std::string> generated_rule_docs();
+/// `readme` with the text between the markers replaced by `list`; nullopt when the markers are missing.
+std::optional<std::string> replace_rule_list(std::string_view readme, std::string_view list);
+
+}  // namespace rrflint

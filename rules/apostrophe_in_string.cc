@@ -1,0 +1,110 @@
+// RRF104 apostrophe-in-string: `'` before a letter inside a quoted string is dropped and lower-cases the letter.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "../lint/values.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF104",
+    .name = "apostrophe-in-string",
+    .severity = Severity::Warning,
+    .fix = FixAvailability::Always,
+    .summary = "An apostrophe before a letter inside a quoted string is dropped and lower-cases the letter.",
+    .docs = R"md(
+## What it does
+Reports a `'` followed by a letter inside a double-quoted string, in commands and in meta-command
+expressions (`echo`, `var`, `set` …). Unquoted text (`M117 Don't`, `M550 PBob's`) is copied as written and is
+not checked.
+
+## Why is this bad?
+Inside quotes, RRF treats `'` as a case escape: it drops the apostrophe and forces the next letter to lower
+case. `M550 P"Bob's printer"` names the machine `Bobs printer`, and `M291 P"Press 'OK'"` shows `Press oK'`.
+Two apostrophes, `''`, give one.
+
+## Example
+```gcode
+M550 P"Bob's printer"
+M291 P"Don't touch the bed" S1
+```
+
+## Use instead
+```gcode
+M550 P"Bob''s printer"
+M291 P"Don''t touch the bed" S1
+```
+
+## Fix safety
+The fix doubles the apostrophe, which keeps it in the text as written. It is safe: a case escape in front of a
+letter that is already lower case changes nothing else, and nobody writes one on purpose in a message.
+
+## References
+- rrf-semantics §1.10, R46; spec-verification §12c (StringParser.cpp `InternalGetQuotedString()`,
+  ExpressionParser.cpp `ParseQuotedString()`)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes (quoted strings)
+)md",
+};
+
+// Reports the quoted strings in `s` that hold an apostrophe before a letter: one finding per string.
+void scan(const FileContext& cx, Span s, Sink& out) {
+  const std::string_view t = cx.source().text();
+  for (uint32_t k = s.begin; k < s.end; ++k) {
+    if (t[k] == '\'' && k + 2 < s.end && t[k + 2] == '\'') {  // a character literal such as '"' (3.5+)
+      k += 2;
+      continue;
+    }
+    if (t[k] != '"') continue;
+    const uint32_t open = k++;
+    std::vector<uint32_t> escapes;  // apostrophes before a letter
+    for (; k < s.end; ++k) {
+      const char c = t[k];
+      if (c == '"') {
+        if (k + 1 < s.end && t[k + 1] == '"') {
+          ++k;
+          continue;
+        }
+        break;
+      }
+      if (c != '\'' || k + 1 >= s.end) continue;
+      if (t[k + 1] == '\'') ++k;
+      else if (lex::is_alpha(t[k + 1])) escapes.push_back(k++);
+    }
+    if (escapes.empty()) continue;
+    const uint32_t close = k < s.end ? k + 1 : s.end;
+    const std::string_view literal = t.substr(open, close - open);
+    Fix fix{.title = escapes.size() == 1 ? "double the apostrophe" : "double the apostrophes",
+            .applicability = Applicability::Safe};
+    for (uint32_t at : escapes) fix.edits.push_back(Edit{cx.at(Span{at, at}), "'"});
+    const uint32_t first = escapes.front();
+    out.report(kMeta, cx.at(Span{first, first + 2}),
+               fmt::format("apostrophe before '{}' in the string {}: RRF drops it and lower-cases the letter, "
+                           "so the text reads \"{}\" (write '''' for an apostrophe)",
+                           t[first + 1], lex::clip(literal), lex::clip(unquote(literal))))
+        .fix(std::move(fix));
+  }
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  for (const Line& line : pf.lines) {
+    if (line.kind == LineKind::Meta) {
+      scan(cx, line.code, out);
+      continue;
+    }
+    if (line.kind != LineKind::Commands) continue;
+    for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
+      const Command& c = pf.commands[i];
+      for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+        if (!lex::is_raw_text(c, *p)) scan(cx, p->value, out);
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule apostrophe_in_string{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,92 @@
+// RRF111 command-after-macro-call: commands after M98/G28/G29/G32/T on one line are not executed.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF111",
+    .name = "command-after-macro-call",
+    .severity = Severity::Warning,
+    .fix = FixAvailability::Always,
+    .summary = "Commands after a command that runs a macro (M98, G28, G29, G32, T) on the same line.",
+    .docs = R"md(
+## What it does
+Reports a line that has more commands after `M98`, `G28`, `G29`, `G32` or a `T` tool selection. These commands
+run macro files (the called file, the homing files, `mesh.g`, `bed.g`, the tool-change files), and a `T`
+command must be on a line of its own.
+
+## Why is this bad?
+RRF can put several commands on one line, but a command that runs a macro reuses the line buffer for the
+macro's lines: the rest of the original line is not executed. The commands after it are silently skipped.
+
+## Example
+```gcode
+M98 P"leds.g" M106 P0 S0
+T0 P0 M116
+```
+
+## Use instead
+```gcode
+M98 P"leds.g"
+M106 P0 S0
+T0 P0
+M116
+```
+
+## Fix safety
+The fix moves the commands after the macro call to a line of their own, with the same indentation. It is
+unsafe: those commands have not run so far, and will once fixed.
+
+## References
+- rrf-semantics §1.7, R49 (StringParser.cpp `FindParameters()`; GCode dictionary "multiple commands on a line")
+- https://docs.duet3d.com/User_manual/Reference/Gcodes
+)md",
+};
+
+bool runs_macro(const Command& c) {
+  if (c.letter == 'T') return true;
+  if (c.fraction >= 0) return false;
+  if (c.letter == 'M') return c.number == 98;
+  return c.letter == 'G' && (c.number == 28 || c.number == 29 || c.number == 32);
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const SourceFile& src = cx.source();
+  for (const Line& line : pf.lines) {
+    if (line.kind != LineKind::Commands || line.command_count < 2) continue;
+    const uint32_t last = line.first_command + line.command_count - 1;
+    for (uint32_t i = line.first_command; i < last; ++i) {
+      const Command& c = pf.commands[i];
+      if (!runs_macro(c)) continue;
+      const Command& next = pf.commands[i + 1];
+      const Span rest{next.span.begin, pf.commands[last].span.end};
+      const uint32_t line0 = src.line_of(line.span.begin);
+      std::string terminator(src.terminator(line0));
+      if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
+      Fix fix{.title = fmt::format("move '{}' to a line of its own", lex::clip(pf.text(rest), 30)),
+              .applicability = Applicability::Unsafe};
+      fix.edits.push_back(
+          Edit{cx.at(Span{c.span.end, next.span.begin}), terminator + std::string(pf.text(lex::indentation(pf, line)))});
+      const std::string why =
+          c.letter == 'T' ? std::string("may not be executed: a 'T' command must be alone on its line")
+                          : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
+                                        lex::word(pf, c));
+      out.report(kMeta, cx.at(rest),
+                 fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c),
+                             why))
+          .fix(std::move(fix));
+      break;  // one finding per line
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule command_after_macro_call{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

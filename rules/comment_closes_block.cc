@@ -1,0 +1,147 @@
+// RRF109 comment-closes-block: before 3.6.0-beta.3 a comment at column 0 ends every open block.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF109",
+    .name = "comment-closes-block",
+    .severity = Severity::Error,
+    .fix = FixAvailability::Always,
+    .summary = "A comment at column 0 ends the open if/while block on firmware before 3.6.0-beta.3.",
+    .docs = R"md(
+## What it does
+On targets before RRF 3.6.0-beta.3, reports a whole-line `;` comment at column 0 that sits inside an `if`,
+`elif`, `else` or `while` block:
+- `error` when the next code line is `else` or `elif`;
+- `warning` when the next code line is still indented under the block, so it belonged to it.
+
+A column-0 comment after the last line of a block (the next code line is back at the block's own level) is
+harmless and not reported. Indented comments never matter.
+
+## Why is this bad?
+RRF stores a column-0 comment as a command at indent 0, and every line at indent 0 ends the open blocks.
+An `else`/`elif` after it then fails with `'else' did not follow 'if'` when the condition was false: that is a
+meta-command error, which aborts the rest of config.g. When the block continues after the comment, its
+remaining lines run even though the condition was false, or, in a `while` loop, once after the loop instead of
+in every pass. RRF 3.6.0-beta.3 fixed this (Duet3D/RepRapFirmware issue 860).
+
+## Example
+```gcode
+if sensors.probes[0].value[0] > 500
+  M291 P"Probe triggered" S1
+; explain the next step
+  M112
+else
+  M98 P"probe-ok.g"
+```
+
+## Use instead
+```gcode
+if sensors.probes[0].value[0] > 500
+  M291 P"Probe triggered" S1
+  ; explain the next step
+  M112
+else
+  M98 P"probe-ok.g"
+```
+
+## Fix safety
+The fix indents the comment like the line before it, which is what RRF 3.6.0-beta.3 and later do anyway. It is
+safe: it keeps the block as its indentation shows it.
+
+## References
+- rrf-semantics §1.4, R44; spec-verification §12e (StringParser.cpp `Put()`, `CheckMetaCommand()`,
+  `ProcessElseCommand()`; Duet3D/RepRapFirmware issue 860)
+- https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands (indentation of comments)
+)md",
+};
+
+constexpr Version kFixedIn{3, 6, 0, 1, 3};  // 3.6.0-beta.3
+
+struct Block {
+  uint32_t indent;   // the indent of the block's lines
+  MetaKind opener;   // if/elif/else/while, or None for a plain block (extra indentation)
+  const Line* head;  // the line that opened it
+};
+
+bool is_code(const Line& l) {
+  return l.kind == LineKind::Commands || l.kind == LineKind::Meta || l.kind == LineKind::Bad;
+}
+
+bool conditional(MetaKind k) {
+  return k == MetaKind::If || k == MetaKind::Elif || k == MetaKind::Else || k == MetaKind::While;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  if (cx.target.version >= kFixedIn) return;
+  const ParsedFile& pf = cx.parsed();
+  const std::vector<Line>& lines = pf.lines;
+  std::vector<Block> open;  // blocks with indent > 0, innermost last, as the lines' indentation shows them
+  const Line* prev = nullptr;  // the previous code line
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const Line& line = lines[i];
+    if (is_code(line)) {
+      while (!open.empty() && line.indent < open.back().indent) open.pop_back();
+      if (prev && line.indent > prev->indent && (open.empty() || line.indent > open.back().indent))
+        open.push_back(Block{line.indent, prev->meta, prev});
+      prev = &line;
+      continue;
+    }
+    if (line.kind != LineKind::Comment || open.empty() || !prev) continue;
+    // A run of column-0 comments (blank lines may sit between them): the first one closes the blocks.
+    std::vector<const Line*> run{&line};
+    size_t j = i + 1;
+    for (; j < lines.size() && !is_code(lines[j]); ++j)
+      if (lines[j].kind == LineKind::Comment) run.push_back(&lines[j]);
+    i = j - 1;
+    if (j >= lines.size()) continue;
+    const Line& next = lines[j];
+
+    Fix fix{.title = "indent the comment like the block", .applicability = Applicability::Safe};
+    const std::string indent(pf.text(lex::indentation(pf, *prev)));
+    for (const Line* c : run) fix.edits.push_back(Edit{cx.at(Span{c->span.begin, c->span.begin}), indent});
+    const Span at{line.span.begin, line.span.begin + 1};
+    const uint32_t next_no = cx.source().position(next.span.begin).line;
+
+    if ((next.meta == MetaKind::Else || next.meta == MetaKind::Elif) && prev->indent > next.indent) {
+      // The block the else/elif continues is the one opened at the else's own level.
+      const Block* head = nullptr;
+      for (const Block& b : open)
+        if (b.head->indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
+      if (!head) continue;  // an else/elif with no if is a syntax error (RRF100)
+      out.report(kMeta, Severity::Error, cx.at(at),
+                 fmt::format("comment at column 0 ends the open blocks on RRF {}: the '{}' on line {} then fails "
+                             "with \"'{}' did not follow 'if'\" when the condition is false, which aborts the rest "
+                             "of the file",
+                             cx.target.version.str(), meta_keyword(next.meta), next_no, meta_keyword(next.meta)))
+          .note(cx.at(head->head->code), fmt::format("the '{}' opens here", meta_keyword(head->opener)))
+          .fix(std::move(fix));
+      continue;
+    }
+    // The blocks the next line would have continued: those at or below its indent.
+    const Block* escaped = nullptr;
+    for (const Block& b : open)
+      if (b.indent <= next.indent && conditional(b.opener)) escaped = &b;
+    if (!escaped) continue;  // the comment follows the last line of the block: harmless
+    const bool loop = escaped->opener == MetaKind::While;
+    Report r = out.report(
+        kMeta, Severity::Warning, cx.at(at),
+        fmt::format("comment at column 0 ends the '{}' block on RRF {}: line {} and the rest of the block {}",
+                    meta_keyword(escaped->opener), cx.target.version.str(), next_no,
+                    loop ? "run once after the loop instead of in every pass"
+                         : "run even when the condition is false"));
+    r.note(cx.at(escaped->head->code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
+    r.fix(std::move(fix));
+  }
+}
+
+}  // namespace
+
+extern const Rule comment_closes_block{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

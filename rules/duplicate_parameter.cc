@@ -1,0 +1,78 @@
+// RRF116 duplicate-parameter: RRF reads the first of two parameters with one letter and ignores the second.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF116",
+    .name = "duplicate-parameter",
+    .severity = Severity::Warning,
+    .summary = "A parameter letter given twice in one command; RRF ignores the second.",
+    .docs = R"md(
+## What it does
+Reports the second parameter with the same letter in one command (`M584 X0 Y1 X2`), when both have a value.
+Lowercase axes (`'a`) and upper-case letters are different parameters. Letters inside unquoted words
+(`Cout1`), and in `( … )` after a command outside CNC mode, are left to RRF103 and RRF112.
+
+## Why is this bad?
+RRF looks a parameter up by scanning the command for its letter and stops at the first match, so the second
+value is silently ignored. It is usually a copy-paste slip, or two settings that were meant for different
+letters.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 X3
+M906 X800 Y800 Z800 Y1000
+```
+
+## Use instead
+```gcode
+M584 X0:3 Y1 Z2
+M906 X800 Y1000 Z800
+```
+
+## References
+- rrf-semantics §1.8 (StringParser.cpp `Seen()` returns the first match; DSF ParserAsync.cs keeps the first)
+)md",
+};
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const std::string_view t = pf.source->text();
+  for (const Command& c : pf.commands) {
+    if (c.param_count < 2) continue;
+    // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
+    uint32_t stop = c.span.end;
+    lex::for_each_plain(t, c.span, [&](uint32_t k) {
+      if (t[k] != '(') return true;
+      stop = k;
+      return false;
+    });
+    // A letter straight after another letter is part of an unquoted word (`Cout1` gives C, O, U, T1): RRF103.
+    auto in_word = [&](const Param& p) { return p.span.begin > 0 && lex::is_alpha(t[p.span.begin - 1]); };
+    auto usable = [&](const Param& p) {
+      return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) && !in_word(p);
+    };
+    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+      if (!usable(*p)) continue;
+      const Param* first = pf.find(c, p->letter);
+      if (first == p || !usable(*first)) continue;
+      // Report each later duplicate once: only against the first occurrence.
+      const std::string name = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
+      out.report(kMeta, cx.at(p->span),
+                 fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
+                             lex::clip(pf.text(p->span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name))
+          .note(cx.at(first->span), fmt::format("the first '{}' is here", name));
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule duplicate_parameter{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,186 @@
+// RRF202 extruder-before-creation: extruder values or extruder numbers before `M584 E…` creates the extruders.
+#include "g10_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF202",
+    .name = "extruder-before-creation",
+    .severity = Severity::Error,
+    .summary = "An extruder is used before `M584 E…` creates it (RRF 3.3 and later have no default extruder).",
+    .docs = R"md(
+## What it does
+On targets from RRF 3.3, where no extruder exists until `M584 E…` creates it, reports:
+- `M563 … D<n>` naming an extruder that does not exist (yet): the tool is not created. Notes point at the later
+  `M584 E…` and at later lines that name the tool (`G10`, `M568`, `T`), which then fail or do nothing;
+- `E` values in M92, M201, M203, M205, M350, M566, M906, M913 or M917 with more values than there are
+  extruders (any value before the first `M584 E…`);
+- `D` in M572, M591 and M221 naming an extruder that does not exist.
+
+It stays silent on RRF 2.x–3.2 targets (they have default extruders), for values written as expressions, when
+the extruder count is not known (an `M584 E` with expressions or inside an `if`), and for commands inside an
+`if`/`while`.
+
+## Why is this bad?
+- M563 checks its drives after deleting any old tool with that number: `bad drive number`, and the tool number
+  then does not exist at all. Every later G10, M568 or T for it fails or selects nothing.
+- An E list longer than the extruder count throws `array too long for parameter 'E'` (3.5.2 and later;
+  `array too long, max length = 0` on 3.3–3.5.1). The axis values of the same line are applied, the E values
+  are lost.
+- `M572 D0` answers `Invalid extruder number '0'`; `M591 D0` and `M221 D0` answer `parameter 'D' too high`.
+
+## Example
+```gcode
+M584 X0 Y1 Z2
+M92 X80 Y80 Z400 E420
+M563 P0 D0 H1
+M584 E3
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 E3
+M92 X80 Y80 Z400 E420
+M563 P0 D0 H1
+```
+
+## References
+- rrf-semantics §2.1, §2.11, R17, R25; spec-verification §7, §10 (Tool.cpp `Tool::Create()`,
+  StringParser.cpp `CheckArrayLength()`, Move.cpp `ConfigurePressureAdvance()`)
+)md",
+};
+
+std::string extruders_here(int n) {
+  if (n == 0) return "no extruder exists yet (RRF 3.3 and later have none until 'M584 E…')";
+  return n == 1 ? "only 1 extruder exists here" : fmt::format("only {} extruders exist here", n);
+}
+
+NodeId later_m584_e(const NodeContext& cx) {
+  return g10::find_later(cx, [&](NodeId i) {
+    g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, i);
+    return nc.is('M', 584) && nc.pf->find(*nc.c, 'E') != nullptr;
+  });
+}
+
+void note_m584_e(const NodeContext& cx, Report& r) {
+  if (NodeId at = later_m584_e(cx); at != kNoNode) r.note(cx.where(at), "the extruders are created here");
+}
+
+/// Notes at later lines that name tool n, up to its next definition: they fail or do nothing.
+void note_tool_uses(const NodeContext& cx, Report& r, int n) {
+  const Segment& seg = cx.segment();
+  int notes = 0;
+  for (NodeId i = cx.id + 1; i < seg.end && notes < 8; ++i) {
+    const Node& node = cx.graph.nodes[i];
+    if (node.kind == NodeKind::ToolSelect && node.index == static_cast<uint32_t>(n)) {
+      r.note(cx.where(node.call_site), fmt::format("'T{}' here selects no tool", n));
+      ++notes;
+      continue;
+    }
+    g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, i);
+    if (!nc || (!nc.is('G', 10) && !nc.is('M', 568) && !nc.is('M', 563))) continue;
+    auto P = get_int(*nc.pf, *nc.c, 'P');
+    if (!P.known() || P.value != n) continue;
+    if (nc.is('M', 563)) {
+      if (g10::m563_defines(*nc.pf, *nc.c)) return;
+      continue;
+    }
+    if (nc.is('G', 10)) {
+      auto L = get_int(*nc.pf, *nc.c, 'L');
+      if (L.present() && (!L.known() || L.value != 1)) continue;
+    }
+    r.note(cx.where(i), fmt::format("{} for tool {} here has no effect", nc.c->letter == 'G' ? "G10" : "M568", n));
+    ++notes;
+  }
+}
+
+void check_m563(const NodeContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  auto D = get_int_list(pf, c, 'D');
+  if (!D.known() || !pf.find(c, 'P')) return;
+  int64_t bad = -1;
+  for (int64_t d : D.value)
+    if (d >= s.extruders) {
+      bad = d;
+      break;
+    }
+  if (bad < 0) return;
+  auto P = get_int(pf, c, 'P');
+  const bool n_known = P.known() && P.value >= 0;
+  const int n = n_known ? static_cast<int>(P.value) : -1;
+  std::string tool = n_known ? fmt::format("tool {}", n) : std::string("the tool");
+  std::string deleted = n_known && s.tool(n) ? fmt::format(", and the existing tool {} is deleted", n) : "";
+  Report r = out.report(kMeta, cx.at(D.param->span),
+                        fmt::format("'{}' names extruder {}, but {}: RRF answers 'bad drive number' and {} is not "
+                                    "created{}",
+                                    g10::quote(pf, c), bad, extruders_here(s.extruders), tool, deleted));
+  note_m584_e(cx, r);
+  if (n_known) note_tool_uses(cx, r, n);
+}
+
+void check_e_values(const NodeContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  const Param* e = pf.find(c, 'E');
+  if (!e || e->kind == ValueKind::None || is_unknown_value(*e)) return;
+  if (e->kind != ValueKind::Number && e->kind != ValueKind::List) return;
+  const size_t count = list_items(pf, *e).size();
+  if (count <= static_cast<size_t>(s.extruders)) return;
+  const std::string answer = s.firmware >= Version(3, 5, 2, 0, 0)
+                                 ? std::string("array too long for parameter 'E'")
+                                 : fmt::format("array too long, max length = {}", s.extruders);
+  std::string what = count == 1 ? "an extruder value" : fmt::format("{} extruder values", count);
+  Report r = out.report(kMeta, cx.at(e->span),
+                        fmt::format("'{}' gives {}, but {}: RRF answers '{}' and the E values are lost", g10::quote(pf, c),
+                                    what, extruders_here(s.extruders), answer));
+  note_m584_e(cx, r);
+}
+
+void check_d(const NodeContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  if (c.number == 572 && !pf.find(c, 'S')) return;  // without S, M572 only reports
+  auto D = get_int_list(pf, c, 'D');
+  if (!D.known() || D.value.empty()) return;
+  if (c.number != 572) D.value.resize(1);  // M591/M221 read one number
+  int64_t bad = -1;
+  for (int64_t d : D.value)
+    if (d >= s.extruders) {
+      bad = d;
+      break;
+    }
+  if (bad < 0) return;
+  const std::string answer =
+      c.number == 572 ? fmt::format("Invalid extruder number '{}'", bad) : std::string("parameter 'D' too high");
+  Report r = out.report(kMeta, cx.at(D.param->span),
+                        fmt::format("'{}' names extruder {}, but {}: RRF answers '{}'", g10::quote(pf, c), bad,
+                                    extruders_here(s.extruders), answer));
+  note_m584_e(cx, r);
+}
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is_command() || cx.runs < 2) return;
+  const MachineState& s = cx.state;
+  if (s.firmware < Version(3, 3, 0, 0, 0) || !s.extruders_known || s.unknown_baseline) return;
+  const Command& c = cx.command();
+  if (c.letter != 'M' || c.fraction >= 0) return;
+  switch (c.number) {
+    case 563: check_m563(cx, out); break;
+    case 92: case 201: case 203: case 205: case 350: case 566: case 906: case 913: case 917:
+      check_e_values(cx, out);
+      break;
+    case 572: case 591: case 221: check_d(cx, out); break;
+    default: break;
+  }
+}
+
+}  // namespace
+
+extern const Rule extruder_before_creation{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint

@@ -1,0 +1,121 @@
+// RRF114 fractional-integer: a fraction where RRF reads an integer is silently dropped.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "../lint/values.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF114",
+    .name = "fractional-integer",
+    .severity = Severity::Warning,
+    .summary = "A fractional value for a parameter RRF reads as an integer.",
+    .docs = R"md(
+## What it does
+Reports a value with a non-zero fraction (`P0.5`) for parameters that RRF reads as whole numbers: tool, heater,
+fan, sensor, probe, extruder and GPIO numbers and a few type selectors (`M563 P/D/H/F`, `M950 H/F/J/P/S/T`,
+`M308 S`, `M106 P`, `M140`/`M141 H/P`, `M143 H`, `M307 H`, `M301 H`, `M570 H`, `G10 P/L`, `M568 P`, `M584 P`,
+`M558 K/P`, `G31 K/P`, `M572 D`, `M591 D`, `M221 D`, `M207 P`, `M567 P`, `M116 P`), and a tool selection such
+as `T1.5`. Driver numbers (`M569 P0.1`, `M584 X0.2`) are board.driver pairs, not fractions, and are not
+checked. Expressions are not checked.
+
+## Why is this bad?
+RRF's integer reader stops at the `.` and keeps what came before, without a message: `M563 P0.5` defines tool
+0. In a colon list the `.` also ends the list, so `M563 D0.5:1` gives the tool only extruder 0.
+
+## Example
+```gcode
+M563 P1.5 D1 H2
+M950 H1.1 C"out1" T1
+```
+
+## Use instead
+```gcode
+M563 P1 D1 H2
+M950 H1 C"out1" T1
+```
+
+## References
+- rrf-semantics §1.9, R55 (StringParser.cpp `ReadIValue()`, `ReadUIValue()`, `GetIntArray()`; RRFLibraries
+  `StrToI32`, `StrToU32`)
+)md",
+};
+
+struct IntParam {
+  char letter;  // command letter
+  int number;
+  std::string_view params;  // the parameter letters read as integers
+};
+
+// Curated from the firmware's GetIValue/GetUIValue/GetLimitedUIValue/GetIntArray/GetUnsignedArray calls.
+constexpr IntParam kIntParams[] = {
+    {'M', 563, "PDHF"}, {'M', 950, "HFJPST"}, {'M', 308, "S"},  {'M', 106, "P"},  {'M', 140, "HP"},
+    {'M', 141, "HP"},   {'M', 143, "H"},      {'M', 307, "H"},  {'M', 301, "H"},  {'M', 570, "H"},
+    {'G', 10, "PL"},    {'M', 568, "P"},      {'M', 584, "P"},  {'M', 558, "KP"}, {'G', 31, "KP"},
+    {'M', 572, "D"},    {'M', 591, "D"},      {'M', 221, "D"},  {'M', 207, "P"},  {'M', 567, "P"},
+    {'M', 116, "P"},
+};
+
+std::string_view int_params(const Command& c) {
+  if (c.fraction >= 0) return {};
+  for (const IntParam& ip : kIntParams)
+    if (ip.letter == c.letter && ip.number == c.number) return ip.params;
+  return {};
+}
+
+// The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers.
+size_t fraction_dot(std::string_view item) {
+  const size_t dot = item.find('.');
+  if (dot == std::string_view::npos) return dot;
+  for (size_t k = dot + 1; k < item.size() && lex::is_digit(item[k]); ++k)
+    if (item[k] != '0') return dot;
+  return std::string_view::npos;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  for (const Command& c : pf.commands) {
+    if (c.letter == 'T' && c.fraction > 0 && c.has_number) {
+      out.report(kMeta, cx.at(c.word),
+                 fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c),
+                             c.number));
+      continue;
+    }
+    const std::string_view letters = int_params(c);
+    for (char letter : letters) {
+      const Param* p = pf.find(c, letter);  // RRF reads the first one
+      if (!p || is_unknown_value(*p) || (p->kind != ValueKind::Number && p->kind != ValueKind::List)) continue;
+      const std::vector<Span> items = list_items(pf, *p);
+      for (size_t i = 0; i < items.size(); ++i) {
+        const std::string_view item = pf.text(items[i]);
+        const size_t dot = fraction_dot(item);
+        if (dot == std::string_view::npos) continue;
+        std::string kept(item.substr(0, dot));
+        if (kept.find_first_of("0123456789") == std::string::npos) kept = "0";
+        if (items.size() == 1) {
+          out.report(kMeta, cx.at(items[i]),
+                     fmt::format("'{}{}' in '{}': RRF reads {} as a whole number, uses {} and drops the fraction "
+                                 "silently",
+                                 letter, item, lex::word(pf, c), letter, kept));
+        } else {
+          const Span rest{items[i].begin + static_cast<uint32_t>(dot), p->value.end};
+          out.report(kMeta, cx.at(items[i]),
+                     fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
+                                 "list at the '.', so '{}' is ignored",
+                                 item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept,
+                                 lex::clip(pf.text(rest))));
+        }
+        break;  // RRF stops reading the parameter at the first '.'
+      }
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule fractional_integer{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

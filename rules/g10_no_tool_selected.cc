@@ -1,0 +1,83 @@
+// RRF310 g10-no-tool-selected: a tool-form G10 or an M568 without P at boot, where no tool is selected.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "tool_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF310",
+    .name = "g10-no-tool-selected",
+    .severity = Severity::Error,
+    .summary = "A tool-form G10 or an M568 without P, where no tool is selected.",
+    .docs = R"md(
+## What it does
+Reports a `G10` in tool form (`L1`, or no `L` with `R`, `S` or a visible axis letter) and an `M568` (RRF 3.3+)
+that have no `P`, where the machine model says no tool is selected: in config.g and the files it runs before
+any `T` command. Without `P` both commands address the current tool. Standalone macros are not checked: when
+they run, the user may have selected a tool.
+
+On RRF 3.3 `M568` requires `P` whether a tool is selected or not; the rule reports that too.
+
+## Why is this bad?
+RRF answers `No tool number given and no current tool` (3.4+; `No tool selected` on 3.3) and sets nothing:
+the offsets or temperatures meant for the tool are lost.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 E3
+M563 P0 D0
+G10 X0 Y0 Z0
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 E3
+M563 P0 D0
+G10 P0 X0 Y0 Z0
+```
+
+## References
+- rrf-semantics §2.3, §2.6; spec-verification §3 (GCodes.cpp `GetSpecifiedOrCurrentTool()`)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset
+)md",
+};
+
+std::string no_tool_reply(Version fw) {
+  if (fw >= Version(3, 4, 0, 0, 0)) return "No tool number given and no current tool";
+  if (fw >= Version(3, 3, 0, 0, 0)) return "No tool selected";
+  return "Attempt to set/report offsets and temperatures for no selected tool";
+}
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is_command() || cx.runs < 2 || !cx.in_boot()) return;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  const Version fw = s.firmware;
+  const bool m568 = c.is('M', 568);
+  if (!m568 && !c.is('G', 10)) return;
+  if (cx.param('P')) return;
+  if (m568 && fw < Version(3, 3, 0, 0, 0)) return;  // M568 does nothing there (RRF328)
+  if (!m568 && tools::g10_form(pf, c, &s, fw) != tools::G10Form::Tool) return;
+  if (m568 && fw < Version(3, 4, 0, 0, 0)) {
+    out.report(kMeta, cx.at(c.span),
+               fmt::format("{} has no 'P': RRF 3.3 requires the tool number in M568 and answers 'missing parameter "
+                           "'P''",
+                           tools::quote(pf, c)));
+    return;
+  }
+  if (!s.current_tool_known || s.current_tool >= 0 || s.unknown_baseline) return;
+  out.report(kMeta, cx.at(c.span),
+             fmt::format("{} has no 'P' and no tool is selected at this point of the boot sequence: RRF answers "
+                         "'{}' and sets nothing",
+                         tools::quote(pf, c), no_tool_reply(fw)));
+}
+
+}  // namespace
+
+extern const Rule g10_no_tool_selected{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint

@@ -1,0 +1,190 @@
+// RRF305 g10-nonzero-z: tools on one carriage that end the boot sequence with different Z offsets.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include "../lint/linter.h"
+#include "g10_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF305",
+    .name = "g10-nonzero-z",
+    .severity = Severity::Warning,
+    .summary = "Two or more tools on one carriage end up with different Z offsets.",
+    .docs = R"md(
+## What it does
+Looks at the tools as they stand at the end of the boot sequence and reports tools that share one carriage but
+have **different** Z offsets. The finding sits at the G10 that gave one tool its Z offset, with notes at the
+other tools' G10s (or M563s, for a Z that was never set).
+
+Tools "share a carriage" when they have the same X, Y and Z maps and the machine shows no sign of being a tool
+changer. Not counted:
+- spindle and laser tools: tools with `R`, tools with no `D`, and any tool on a machine in CNC or laser mode
+  (`M453`/`M452`), where Z offsets are tool lengths;
+- tools that share their whole heater set: virtual tools on one nozzle (mixing, MMU/ERCF filament slots)
+  cannot collide with each other;
+- tools whose Z offset is unknown (expression, inside an `if`) or that were created inside an `if`.
+
+Equal offsets cause no collision, and a single tool never fires.
+
+Tool-changer evidence turns the rule off for the machine:
+- a tool-change macro (`tfree*.g`, `tpre*.g`, `tpost*.g`) that moves an axis (`G0`–`G3` with an axis letter,
+  `G28`, `G30`, `G38.n`, `G53`), calls a macro (`M98`, e.g. a coupler macro) or drives a servo or output
+  (`M280`, `M42`). Macros holding only temperature waits or fan commands do not count: the Duet config tool
+  writes those for every tool;
+- an M563 with a `Z` map (3.5 and later);
+- the option `--tool-changer` (`machine.tool-changer = true` in the config file).
+
+When the rule fires, a note says that none of this evidence was found.
+
+## Why is this bad?
+A tool offset in Z moves the bed (or the head) so that the active nozzle prints at the right height. On a
+carriage with two nozzles, the Z offsets can only differ if one nozzle hangs lower than the other, and then
+the lower nozzle drags through the print while the upper one prints. Usually the different Z values are left
+over from a tool changer config, or typed for the wrong tool.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 E3:4
+M563 P0 D0 H1
+M563 P1 D1 H2
+G10 P0 X0 Y0 Z0
+G10 P1 X18 Y0 Z-0.6
+```
+
+## Use instead
+Level the nozzles mechanically and give both tools the same Z offset:
+```gcode
+G10 P0 X0 Y0 Z0
+G10 P1 X18 Y0 Z0
+```
+On a real tool changer, declare it with `--tool-changer` (or `machine.tool-changer = true`).
+
+## References
+- rrf-semantics §2.4, §2.7; spec-verification "RRF305 g10-nonzero-z"
+- Duet docs, G10: "you want explicitly to set Z0.0"
+)md",
+};
+
+bool is_tool_change_macro(std::string_view sd_path) {
+  const std::string b = g10::base_name(sd_path);
+  if (!b.ends_with(".g")) return false;
+  for (std::string_view k : {"tfree", "tpre", "tpost"}) {
+    if (!b.starts_with(k)) continue;
+    std::string_view rest = std::string_view(b).substr(k.size(), b.size() - k.size() - 2);
+    return std::all_of(rest.begin(), rest.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  }
+  return false;
+}
+
+/// Does this tool-change macro show tool-changer work (moves, macro calls, servos)?
+bool changes_tools(const ParsedFile& pf, const MachineState& s) {
+  for (const Command& c : pf.commands) {
+    if (c.letter == 'G') {
+      if (c.number == 28 || c.number == 30 || c.number == 38 || c.number == 53) return true;
+      if (c.number >= 0 && c.number <= 3)
+        for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+          if (g10::is_axis_letter(p->letter, s)) return true;
+    } else if (c.letter == 'M' && (c.number == 98 || c.number == 280 || c.number == 42)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool tool_changer_evidence(const EndContext& cx) {
+  const MachineState& s = cx.end_of_boot;
+  if (cx.options.tool_changer) return true;
+  for (const auto& [n, t] : s.tools)
+    if (t.zmap.origin != kNoNode) return true;
+  for (uint32_t i = 0; i < cx.machine.unit_count(); ++i) {
+    const FileUnit& u = cx.machine.unit(i);
+    if (is_tool_change_macro(u.sd_path) && changes_tools(u.parsed, s)) return true;
+  }
+  return false;
+}
+
+std::string format_z(double z) { return fmt::format("{:g}", z); }
+
+void check(const EndContext& cx, Sink& out) {
+  const MachineState& s = cx.end_of_boot;
+  if (!s.tools_known || s.unknown_baseline || s.mode != MachineMode::FFF || s.tools.size() < 2) return;
+  const int z = s.axis_index('Z');
+  if (z < 0 || z >= kMaxAxisSlots) return;
+
+  // Tools that count, grouped by their axis maps (one group = one carriage).
+  using Key = std::tuple<uint32_t, uint32_t, uint32_t>;
+  std::map<Key, std::vector<const Tool*>> groups;
+  for (const auto& [n, t] : s.tools) {
+    if (t.maybe || t.spindle || !t.has_d || !t.drives_known || t.drives.empty() || !t.heaters_known) continue;
+    if (!t.xmap.known || !t.ymap.known || !t.zmap.known) continue;
+    if (!t.offsets[static_cast<size_t>(z)].known) continue;
+    groups[Key{t.xmap.bits, t.ymap.bits, t.zmap.bits}].push_back(&t);
+  }
+  bool checked_evidence = false;
+  for (auto& [key, tools] : groups) {
+    if (tools.size() < 2) continue;
+    // Tools that differ in Z from a tool with another heater set.
+    std::vector<const Tool*> involved;
+    for (const Tool* a : tools) {
+      for (const Tool* b : tools) {
+        if (a == b) continue;
+        std::vector<int64_t> ha = a->heaters, hb = b->heaters;
+        std::sort(ha.begin(), ha.end());
+        std::sort(hb.begin(), hb.end());
+        if (ha == hb) continue;
+        if (std::abs(a->offsets[static_cast<size_t>(z)].value - b->offsets[static_cast<size_t>(z)].value) < 1e-9)
+          continue;
+        involved.push_back(a);
+        break;
+      }
+    }
+    if (involved.size() < 2) continue;
+    if (!checked_evidence) {
+      if (tool_changer_evidence(cx)) return;
+      checked_evidence = true;
+    }
+    // The finding sits at the Z of the first tool with a non-zero offset that a command set.
+    const Tool* primary = nullptr;
+    for (const Tool* t : involved)
+      if (t->offsets[static_cast<size_t>(z)].value != 0 && t->offsets[static_cast<size_t>(z)].origin != kNoNode) {
+        primary = t;
+        break;
+      }
+    if (!primary) continue;
+    std::string numbers, values;
+    for (size_t i = 0; i < involved.size(); ++i) {
+      const char* sep = i == 0 ? "" : (i + 1 == involved.size() ? " and " : ", ");
+      numbers += sep + std::to_string(involved[i]->number);
+      values += (i == 0 ? "" : ", ") + format_z(involved[i]->offsets[static_cast<size_t>(z)].value);
+    }
+    const Fact& pz = primary->offsets[static_cast<size_t>(z)];
+    Report r = out.report(kMeta, cx.where(pz.origin),
+                          fmt::format("tools {} share one carriage but end up with different Z offsets ({}): the "
+                                      "lower nozzle can hit the print while the other one prints",
+                                      numbers, values));
+    for (const Tool* t : involved) {
+      if (t == primary) continue;
+      const Fact& f = t->offsets[static_cast<size_t>(z)];
+      if (f.origin != kNoNode)
+        r.note(cx.where(f.origin), fmt::format("tool {} gets Z offset {} here", t->number, format_z(f.value)));
+      else if (t->created != kNoNode)
+        r.note(cx.where(t->created), fmt::format("tool {} is created here and keeps Z offset 0", t->number));
+    }
+    r.note(cx.where(primary->created),
+           fmt::format("tool {} is defined here with the same axis maps as the others, and there is no tool-changer "
+                       "evidence: no tool-change macro moves an axis or calls a macro, no M563 maps Z, and "
+                       "--tool-changer is not set",
+                       primary->number));
+  }
+}
+
+}  // namespace
+
+extern const Rule g10_nonzero_z{.meta = kMeta, .check_end = check};
+
+}  // namespace rrflint

@@ -1,0 +1,70 @@
+// RRF311 g10-report-only: `G10 P<n>` with nothing to set only prints the tool's settings.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "tool_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF311",
+    .name = "g10-report-only",
+    .severity = Severity::Info,
+    .summary = "G10 P<n> with no axis and no R/S only reports the tool's settings.",
+    .docs = R"md(
+## What it does
+Reports a `G10 P<n>` (optionally with `L1`) that has no other parameter, in config.g and the files it runs
+at boot. Such a command sets nothing: RRF prints the tool's offsets and temperatures, which nobody reads while
+the machine boots. Standalone macros are not checked, since printing the settings may be their purpose.
+
+## Why is this bad?
+The line does nothing at boot. Usually it is what is left of an edit: the offsets were meant to be on it
+(`G10 P0 X0 Y0 Z0`), or they were moved to config-override.g and the line was forgotten.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 E3
+M563 P0 D0
+G10 P0
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 E3
+M563 P0 D0
+G10 P0 X0 Y0 Z0
+```
+
+## References
+- rrf-semantics §2.3 (GCodes.cpp `SetOrReportOffsets()`: with only P the tool is reported)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset
+)md",
+};
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is('G', 10) || !cx.in_boot()) return;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  auto P = get_int(pf, c, 'P');
+  if (P.absent()) return;
+  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    if (p->letter == 'P') continue;
+    if (p->letter == 'L') {
+      auto L = get_int(pf, c, 'L');
+      if (L.known() && L.value == 1) continue;
+    }
+    return;
+  }
+  const std::string tool = P.known() ? fmt::format("tool {}", P.value) : "the tool";
+  out.report(kMeta, cx.at(c.span),
+             fmt::format("{} sets nothing: with no axis letter and no 'R' or 'S' it only reports {}'s offsets and "
+                         "temperatures, which nobody reads at boot",
+                         tools::quote(pf, c), tool));
+}
+
+}  // namespace
+
+extern const Rule g10_report_only{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint

@@ -1,0 +1,128 @@
+// RRF307 g10-temperature-form: G10 sets tool temperatures where M568 does that job (RRF 3.3+).
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "tool_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF307",
+    .name = "g10-temperature-form",
+    .severity = Severity::Info,
+    .fix = FixAvailability::Sometimes,
+    .summary = "G10 with R/S sets tool temperatures, which M568 does from RRF 3.3.",
+    .docs = R"md(
+## What it does
+Reports a tool-form `G10` (no `L`, or `L1`) that sets standby (`R`) or active (`S`) temperatures, on targets
+RRF 3.3 and later. The rule is silent for older targets, where `M568` does not set temperatures, and in
+resurrect.g, which the firmware writes itself (with `G10` up to RRF 3.4).
+
+## Why is this bad?
+From RRF 3.3 `M568` sets tool temperatures, and the G-code dictionary says the temperature form of `G10` may be
+removed in a future version. The firmware's deprecation warning is compiled out, so nothing on the machine tells
+you. Keeping offsets on `G10` and temperatures on `M568` also makes each line do one thing.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 E3
+M308 S1 P"temp1" Y"thermistor" T100000 B4138
+M950 H1 C"out1" T1
+M563 P0 D0 H1
+G10 P0 X0 Y0 Z0 R150 S210
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 E3
+M308 S1 P"temp1" Y"thermistor" T100000 B4138
+M950 H1 C"out1" T1
+M563 P0 D0 H1
+G10 P0 X0 Y0 Z0
+M568 P0 R150 S210
+```
+
+## Fix safety
+The fix moves `R` and `S` to a new `M568 P<n> R… S…` line right after the `G10`, with the same indentation and
+line ending, and keeps the offsets on the `G10`; a `G10` that held only `P` and temperatures becomes the
+`M568`. Both commands run the same firmware code (`SetOrReportOffsets`), so the effect is unchanged: the fix is
+safe. It is offered only when the `G10` is alone on its line, and for a `G10` without `P` only from RRF 3.4
+(3.3's `M568` requires `P`).
+
+## References
+- rrf-semantics §2.3, §2.6; user-pain P22 (GCodes.cpp `SetOrReportOffsets()`, GCodes2.cpp case 568)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-tool-settings
+)md",
+};
+
+/// The fix: move R/S to an M568 line after the G10, or turn the G10 into that M568.
+std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
+  const ParsedFile& pf = cx.parsed();
+  const SourceFile& src = cx.source();
+  const Line& line = pf.line_of(c);
+  if (line.command_count != 1) return std::nullopt;
+  const Param *P = nullptr, *R = nullptr, *S = nullptr;
+  bool others = false;
+  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    if (p->letter == 'P' || p->letter == 'R' || p->letter == 'S') {
+      const Param*& slot = p->letter == 'P' ? P : p->letter == 'R' ? R : S;
+      if (slot) return std::nullopt;  // a repeated letter: RRF reads the first; leave such lines alone
+      slot = p;
+    } else if (p->letter != 'L') {
+      others = true;
+    }
+  }
+  if (!P && cx.target.version < Version(3, 4, 0, 0, 0)) return std::nullopt;
+  std::string m568 = "M568";
+  for (const Param* p : {P, R, S})
+    if (p) m568 += " " + std::string(pf.text(p->span));
+  Fix fix;
+  fix.applicability = Applicability::Safe;
+  if (!others) {
+    fix.title = fmt::format("replace with '{}'", m568);
+    fix.edits.push_back(Edit{cx.at(c.span), m568});
+    return fix;
+  }
+  fix.title = fmt::format("move the temperatures to '{}'", m568);
+  // Delete each of R and S with the blanks before it.
+  for (const Param* p : {R, S}) {
+    if (!p) continue;
+    uint32_t begin = c.word.end;
+    for (const Param* q = pf.param_begin(c); q != p; ++q) begin = q->span.end;
+    fix.edits.push_back(Edit{cx.at(Span{begin, p->span.end}), ""});
+  }
+  const uint32_t l0 = src.line_of(c.span.begin);
+  const Span ls = src.line_span(l0);
+  std::string_view text = src.slice(ls);
+  const std::string indent(text.substr(0, text.find_first_not_of(" \t")));
+  std::string term(src.terminator(l0));
+  if (term.empty()) term = l0 > 0 ? std::string(src.terminator(l0 - 1)) : "\n";
+  fix.edits.push_back(Edit{cx.at(Span{ls.end, ls.end}), term + indent + m568});
+  return fix;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  if (cx.target.version < Version(3, 3, 0, 0, 0)) return;
+  // resurrect.g is written by the firmware (with G10 up to 3.4, with M568 from 3.5), not by the user.
+  if (to_lower(cx.unit.sd_path).ends_with("/resurrect.g")) return;
+  const ParsedFile& pf = cx.parsed();
+  for (const Command& c : pf.commands) {
+    if (!c.is('G', 10)) continue;
+    if (!pf.find(c, 'R') && !pf.find(c, 'S')) continue;
+    if (tools::g10_form(pf, c, nullptr, cx.target.version) != tools::G10Form::Tool) continue;
+    auto P = get_int(pf, c, 'P');
+    const std::string tool = P.present() ? fmt::format("tool {}", pf.text(P.param->value)) : "the current tool";
+    Report r = out.report(kMeta, cx.at(c.span),
+                          fmt::format("{} sets {}'s temperatures with G10: from RRF 3.3 'M568' sets them, and the "
+                                      "temperature form of G10 may be removed",
+                                      tools::quote(pf, c), tool));
+    if (auto f = make_fix(cx, c)) r.fix(std::move(*f));
+  }
+}
+
+}  // namespace
+
+extern const Rule g10_temperature_form{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,91 @@
+// RRF312 g10-temperature-without-heater: temperatures for a tool that has no heaters are silently ignored.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "tool_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF312",
+    .name = "g10-temperature-without-heater",
+    .severity = Severity::Warning,
+    .summary = "G10/M568 sets temperatures for a tool defined without heaters.",
+    .docs = R"md(
+## What it does
+Reports a tool-form `G10`, or an `M568` (RRF 3.3+), with `R` or `S` for a tool whose `M563` has no `H`
+parameter (or `H-1`). It stays silent when every temperature given is 0 or lower (nothing meant to heat), when
+the tool or the values are unknown (expressions, `param.*`, conditional definitions), and for a tool that names
+a heater that was never created: that is the heater order rules' concern.
+
+## Why is this bad?
+RRF only sets temperatures for the heaters a tool has. For a tool with none, `R` and `S` are silently ignored
+(the command just reports the tool). Usually the `H` parameter is missing from the `M563`, and the hot end will
+not heat when the tool is selected.
+
+## Example
+```gcode
+M584 X0 Y1 Z2 E3
+M308 S1 P"temp1" Y"thermistor" T100000 B4138
+M950 H1 C"out1" T1
+M563 P0 D0
+M568 P0 R150 S210
+```
+
+## Use instead
+```gcode
+M584 X0 Y1 Z2 E3
+M308 S1 P"temp1" Y"thermistor" T100000 B4138
+M950 H1 C"out1" T1
+M563 P0 D0 H1
+M568 P0 R150 S210
+```
+
+## References
+- rrf-semantics §2.3, R08 (GCodes.cpp `SetOrReportOffsets()`: `if (hCount > 0)`)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+)md",
+};
+
+/// Do R and S hold only known values of 0 or lower (meaning "off")? Unknown values count as not-off.
+bool only_off_values(const ParsedFile& pf, const Command& c, bool& known) {
+  known = true;
+  bool off = true;
+  for (char L : {'R', 'S'}) {
+    auto v = get_float_list(pf, c, L);
+    if (v.absent()) continue;
+    if (!v.known()) {
+      known = false;
+      continue;
+    }
+    for (double t : v.value) off = off && t <= 0;
+  }
+  return off;
+}
+
+void check(const NodeContext& cx, Sink& out) {
+  if (!cx.is_command() || cx.runs < 2) return;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  if (!tools::sets_tool_settings(pf, c, s)) return;
+  if (!pf.find(c, 'R') && !pf.find(c, 'S')) return;
+  bool known = false;
+  const int n = tools::addressed_tool(pf, c, s, known);
+  if (!known || n < 0) return;
+  const Tool* tool = tools::certain_tool(s, n);
+  if (!tool || !tools::real_heaters(*tool).empty() || tool->spindle) return;
+  bool values_known = true;
+  if (only_off_values(pf, c, values_known) || !values_known) return;
+  out.report(kMeta, cx.at(c.span),
+             fmt::format("{} sets temperatures for tool {}, which has no heaters: RRF silently ignores 'R' and 'S'",
+                         tools::quote(pf, c), n))
+      .note(cx.where(tool->created), fmt::format("tool {} is created here without a heater ('H')", n));
+}
+
+}  // namespace
+
+extern const Rule g10_temperature_without_heater{.meta = kMeta, .check_node = check};
+
+}  // namespace rrflint

@@ -1,0 +1,76 @@
+// RRF328 m568-before-3.3: M568 used for temperatures on RRF 3.2 or older, where it does nothing.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "tool_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF328",
+    .name = "m568-before-3.3",
+    .severity = Severity::Warning,
+    .summary = "M568 sets tool temperatures, but the target is RRF 3.2 or older, where M568 does nothing.",
+    .docs = R"md(
+## What it does
+Reports an `M568` that sets temperatures (`R`, `S` other than 0 or 1, or `A`) on a target before RRF 3.3.
+`M568 P<n> S0`/`S1` on such a target is the old "mixing off/on" form, which also does nothing but was not meant
+to set a temperature; `m568-legacy-mix-meaning` (RRF329) covers it on newer targets.
+
+## Why is this bad?
+Before RRF 3.3, `M568` was the obsolete "turn tool mixing on/off" command: RRF 1.21 to 3.2 reply `The M568
+command is no longer needed` and do nothing. The temperatures are silently lost. `G10 P<n> R… S…` sets them on
+those versions; or update the firmware, since the file was probably written for 3.3 or later.
+
+## Example
+```gcode
+; rrflint-options: --firmware 3.2
+M584 X0 Y1 Z2 E3
+M563 P0 D0 H1
+M568 P0 R150 S210
+```
+
+## Use instead
+```gcode
+; rrflint-options: --firmware 3.2
+M584 X0 Y1 Z2 E3
+M563 P0 D0 H1
+G10 P0 R150 S210
+```
+
+## References
+- rrf-semantics §2.6, R22; spec-verification §14 ([S322] GCodes2.cpp case 568: "The M568 command is no longer needed")
+- https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-tool-settings
+)md",
+};
+
+/// Does this M568 set temperatures (rather than the legacy mixing flag)?
+bool sets_temperatures(const ParsedFile& pf, const Command& c) {
+  if (pf.find(c, 'R') || pf.find(c, 'A')) return true;
+  auto S = get_float_list(pf, c, 'S');
+  if (S.absent()) return false;
+  if (!S.known()) return true;
+  for (double v : S.value)
+    if (v != 0 && v != 1) return true;
+  return false;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const Version fw = cx.target.version;
+  if (fw >= Version(3, 3, 0, 0, 0)) return;
+  const ParsedFile& pf = cx.parsed();
+  for (const Command& c : pf.commands) {
+    if (!c.is('M', 568) || !sets_temperatures(pf, c)) continue;
+    out.report(kMeta, cx.at(c.span),
+               fmt::format("{} sets tool heater settings, but before RRF 3.3 M568 does nothing: RRF {} replies 'The "
+                           "M568 command is no longer needed'; use 'G10 P<n> R… S…' there",
+                           tools::quote(pf, c), fw.str()));
+  }
+}
+
+}  // namespace
+
+extern const Rule m568_before_3_3{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,90 @@
+// RRF108 mixed-indentation: tabs and spaces both indent one block, which RRF warns about.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF108",
+    .name = "mixed-indentation",
+    .severity = Severity::Warning,
+    .summary = "Tabs and spaces both indent the lines of one block.",
+    .docs = R"md(
+## What it does
+Follows RRF's own check: once a file has used a meta command (`if`, `while`, `var` …), RRF collects the
+indentation characters of the lines up to the next line at column 0. When both tabs and spaces have been used
+in that stretch, it warns once per file. rrflint reports the same line, once per file. Blank lines and indented
+comments do not count. Different blocks may use different characters: a line at column 0 starts afresh.
+
+## Why is this bad?
+RRF counts a space as 1 and moves a tab on to the next multiple of 4. Lines that look aligned in an editor can
+have different indents to RRF, which then ends a block early or opens a new one. RRF prints
+`both space and tab characters used to indent blocks at/before line N`.
+
+## Example
+```gcode
+if !move.axes[0].homed
+	G28 X          ; a tab
+    G28 Y          ; four spaces
+```
+
+## Use instead
+```gcode
+if !move.axes[0].homed
+  G28 X
+  G28 Y
+```
+
+## References
+- rrf-semantics §1.2, R45 (StringParser.cpp `Put()` tab rule, `CheckMetaCommand()`,
+  `CheckForMixedSpacesAndTabs()`)
+- https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands (blocks and indentation)
+)md",
+};
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  bool seen_meta = false;
+  const Line* first_space = nullptr;  // the first line since the last column-0 line that indented with a space
+  const Line* first_tab = nullptr;
+  auto mixed = [&] { return seen_meta && first_space && first_tab; };
+  for (const Line& line : pf.lines) {
+    // Blank lines and indented comments take no part in blocks: skip them (RRF counts their blanks too, but
+    // they cannot change what a block contains).
+    if (line.kind == LineKind::Blank) continue;
+    if (line.indent == 0) {
+      first_space = first_tab = nullptr;
+    } else {
+      if (line.indent_spaces && !first_space) first_space = &line;
+      if (line.indent_tabs && !first_tab) first_tab = &line;
+    }
+    if (line.kind == LineKind::Meta) seen_meta = true;
+    if (line.indent > 0 && mixed()) {
+      const bool tab_here = line.indent_tabs;
+      const Line* other = tab_here ? first_space : first_tab;
+      if (line.indent_tabs && line.indent_spaces) other = nullptr;
+      Report r = out.report(
+          kMeta, cx.at(lex::indentation(pf, line)),
+          fmt::format("{}: RRF counts a tab as up to 4 blanks and warns 'both space and tab characters used to "
+                      "indent blocks'",
+                      other ? fmt::format("this block is indented with both tabs and spaces: {} here, {} above",
+                                          tab_here ? "tabs" : "spaces", tab_here ? "spaces" : "tabs")
+                            : std::string("this line is indented with both tabs and spaces")));
+      if (other)
+        r.note(cx.at(lex::indentation(pf, *other)),
+               fmt::format("indented with {} here", tab_here ? "spaces" : "tabs"));
+      return;  // once per file, like RRF
+    }
+    // Before the first meta command RRF starts every line afresh.
+    if (!seen_meta) first_space = first_tab = nullptr;
+  }
+}
+
+}  // namespace
+
+extern const Rule mixed_indentation{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

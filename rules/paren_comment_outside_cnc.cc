@@ -1,0 +1,113 @@
+// RRF112 paren-comment-outside-cnc: `( … )` is a comment only in CNC mode (after M453).
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF112",
+    .name = "paren-comment-outside-cnc",
+    .severity = Severity::Warning,
+    .fix = FixAvailability::Sometimes,
+    .summary = "Text in parentheses used as a comment outside CNC mode.",
+    .docs = R"md(
+## What it does
+Reports `( … )` after a command, outside quotes and `{…}`, on lines RRF reads in FFF or laser mode: before any
+`M453` in the file, or after an `M451`/`M452`. Files that do not switch the mode themselves are skipped when
+another file of the machine selects CNC mode (`M453`), since they may run in it. Unquoted text (`M117 Done (50%)`)
+is copied as written and not reported; parentheses in meta-command expressions are arithmetic.
+
+## Why is this bad?
+The standalone firmware treats `( … )` as a comment only in CNC mode. Elsewhere the text stays part of the
+command: its letters become parameters (`(fan off)` adds `F`, `A`, `N`, `O` …), and an `M` or `G` in it starts a
+new command. In SBC mode the DuetSoftwareFramework parser always drops it, so the same line behaves differently
+on the two set-ups.
+
+## Example
+```gcode
+M106 P0 S0 (part fan off)
+```
+
+## Use instead
+```gcode
+M106 P0 S0 ; part fan off
+```
+
+## Fix safety
+When the parentheses end the line and the line has no `;` comment, the fix turns them into a `;` comment. It
+is unsafe: it changes what the standalone firmware reads, to what the author meant.
+
+## References
+- rrf-semantics §1.4, §1.13, R50 (StringParser.cpp `Put()`, the '(' case tests the machine type; DSF
+  ParserAsync.cs)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes (comments)
+)md",
+};
+
+bool sets_mode(const Command& c) {
+  return c.letter == 'M' && c.fraction < 0 && (c.number == 451 || c.number == 452 || c.number == 453);
+}
+
+// Is `off` inside unquoted text that RRF copies as written (M117 text, M550 PName)?
+bool in_raw_text(const ParsedFile& pf, const Line& line, uint32_t off) {
+  for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
+    const Command& c = pf.commands[i];
+    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+      if (lex::is_raw_text(c, *p) && off >= p->value.begin && off < p->value.end) return true;
+  }
+  return false;
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const std::string_view t = pf.source->text();
+  // The machine mode is global: a file that never sets it may run in the CNC mode another file selects.
+  bool own_mode = false;
+  for (const Command& c : pf.commands) own_mode = own_mode || sets_mode(c);
+  if (!own_mode) {
+    for (size_t u = 0; u < cx.machine.unit_count(); ++u)
+      for (const Command& c : cx.machine.unit(static_cast<uint32_t>(u)).parsed.commands)
+        if (c.letter == 'M' && c.number == 453 && c.fraction < 0) return;
+  }
+  bool cnc = false;
+  for (const Line& line : pf.lines) {
+    if (line.kind == LineKind::Commands && !cnc) {
+      std::vector<Span> groups;
+      lex::for_each_plain(t, line.code, [&](uint32_t k) {
+        if (t[k] != '(' || in_raw_text(pf, line, k)) return true;
+        if (!groups.empty() && k < groups.back().end) return true;  // nested '(' inside a group
+        uint32_t e = k + 1;
+        while (e < line.code.end && t[e] != ')') ++e;
+        groups.push_back(Span{k, e < line.code.end ? e + 1 : line.code.end});
+        return true;
+      });
+      for (const Span g : groups) {
+        Report r = out.report(kMeta, cx.at(g),
+                              fmt::format("'{}' is not a comment outside CNC mode: standalone RRF reads its letters "
+                                          "as parameters (SBC mode drops it); use ';' for a comment",
+                                          lex::clip(pf.text(g))));
+        const bool last = g.end == line.code.end && g.end > g.begin + 1 && t[g.end - 1] == ')';
+        if (last && line.comment.empty() && &g == &groups.back()) {
+          std::string_view inner = t.substr(g.begin + 1, g.end - g.begin - 2);
+          while (!inner.empty() && lex::is_blank(inner.front())) inner.remove_prefix(1);
+          Fix fix{.title = "make it a ';' comment", .applicability = Applicability::Unsafe};
+          fix.edits.push_back(Edit{cx.at(g), fmt::format("; {}", inner)});
+          r.fix(std::move(fix));
+        }
+      }
+    }
+    for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
+      const Command& c = pf.commands[i];
+      if (sets_mode(c)) cnc = c.number == 453;
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule paren_comment_outside_cnc{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,66 @@
+// RRF113 semicolon-in-expression: a ';' inside `{…}` still starts a comment and cuts the expression.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF113",
+    .name = "semicolon-in-expression",
+    .severity = Severity::Error,
+    .summary = "A ';' inside an expression starts a comment and cuts the expression short.",
+    .docs = R"md(
+## What it does
+Reports an expression that a `;` cuts short: a `{…}` in a command, or the condition or value of a meta
+command (`if`, `while`, `var`, `set`, `echo` …), that is still open at a `;` while its closing bracket comes
+later on the line. A `;` inside a quoted string is fine. An expression that is never closed is a syntax error
+(RRF100), not this rule.
+
+## Why is this bad?
+RRF's standalone parser looks for `;` outside quoted strings only; braces do not protect it. Everything from the
+`;` on is a comment, so the expression ends unclosed and RRF rejects the command with an expression error. In
+a meta command that error aborts the rest of the file.
+
+## Example
+```gcode
+G1 X{move.axes[0].max - 5 ; stay off the edge} F3000
+echo {"probe " ^ "done"; "ok"}
+```
+
+## Use instead
+```gcode
+G1 X{move.axes[0].max - 5} F3000 ; stay off the edge
+echo {"probe " ^ "done"}
+```
+
+## References
+- rrf-semantics §1.4, §1.11, R50; spec-verification §12d (StringParser.cpp `Put()`, the ';' case does not test
+  the brace count)
+)md",
+};
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const std::string_view t = pf.source->text();
+  for (const Span cut : pf.semicolon_cuts) {
+    uint32_t semi = cut.end;
+    while (semi < t.size() && lex::is_blank(t[semi])) ++semi;
+    bool meta = false;
+    for (const Line& line : pf.lines)
+      if (line.kind == LineKind::Meta && line.span.contains(cut.begin)) meta = true;
+    out.report(kMeta, cx.at(Span{semi, semi + 1}),
+               fmt::format("';' inside an expression starts a comment: RRF reads only '{}' and fails with an "
+                           "expression error{}",
+                           lex::clip(pf.text(cut)), meta ? ", which aborts the rest of the file" : ""))
+        .note(cx.at(Span{cut.begin, cut.begin + 1}), "the expression opens here");
+  }
+}
+
+}  // namespace
+
+extern const Rule semicolon_in_expression{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

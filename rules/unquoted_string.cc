@@ -1,0 +1,136 @@
+// RRF103 unquoted-string: a string parameter written without the quotes RRF 3 requires.
+#include <fmt/format.h>
+
+#include "../lint/rule.h"
+#include "lex_common.h"
+
+namespace rrflint {
+namespace {
+
+constexpr RuleMeta kMeta{
+    .code = "RRF103",
+    .name = "unquoted-string",
+    .severity = Severity::Error,
+    .fix = FixAvailability::Always,
+    .summary = "A string parameter is given without the quotes RRF 3 requires.",
+    .docs = R"md(
+## What it does
+Checks the string parameters that RRF 3 reads with `GetQuotedString()`: pin names (`M950 C`, `M308 P`, `M574 P`,
+`M558 C`, `M591 C`), the sensor type and name of `M308` (`Y`, `A`), the tool name `M563 S`, and the macro file
+name of `M98 P` from RRF 3.5. It reports a value that does not start with `"` (or `{` for an expression) right
+after the letter, including a blank between the letter and the quote (`P "xstop"`).
+
+Numbers given as pin names (`C3`) are reported only for `M950` and `M308`, which exist only in RRF 3: in
+RRF 2 `M558 C3` and `M591 C3` were endstop numbers.
+
+## Why is this bad?
+RRF answers `expected a string expression` and rejects the command: the pin, sensor, endstop or tool is not
+configured. RRF 3 also splits an unquoted `xstop` into parameters `X`, `S`, `T`, `O`, `P`. For `M98`, RRF 3.4
+and earlier accepted an unquoted name; from 3.5 the macro is not run at all.
+
+## Example
+```gcode
+M574 X1 S1 Pxstop
+M950 H0 C bedheat T0
+M98 Pmacros/leds.g
+```
+
+## Use instead
+```gcode
+M574 X1 S1 P"xstop"
+M950 H0 C"bedheat" T0
+M98 P"macros/leds.g"
+```
+
+## Fix safety
+Removing a blank between the letter and its quoted string is safe. Adding quotes around unquoted text is
+unsafe: rrflint takes the text up to the next blank (for `M98`, the rest of the line), which may not be all
+that was meant.
+
+## References
+- rrf-semantics §1.10, R40 (StringParser.cpp `GetQuotedString()`, GCodeBuffer.cpp `GetReducedString()`;
+  GCodes2.cpp case 98 uses `GetQuotedString` from 3.5.0-rc.1)
+- https://docs.duet3d.com/User_manual/Reference/Gcodes
+)md",
+};
+
+struct StringParam {
+  int number;        // M code
+  char letter;       // parameter letter
+  bool numbers_too;  // report a plain number as well (commands that exist only in RRF 3)
+  std::string_view what;
+};
+
+constexpr StringParam kStringParams[] = {
+    {98, 'P', true, "macro file name"}, {950, 'C', true, "pin name"},     {308, 'P', true, "pin name"},
+    {308, 'Y', true, "sensor type"},    {308, 'A', true, "sensor name"},  {574, 'P', false, "pin name"},
+    {558, 'C', false, "pin name"},      {591, 'C', false, "pin name"},    {563, 'S', false, "tool name"},
+};
+
+// M98 P uses GetQuotedString from 3.5.0-rc.1; the other parameters need quotes in every RRF 3.
+Version needs_quotes_from(int number) { return number == 98 ? Version(3, 5, 0, 2, 1) : Version(3, 0, 0, 0, 0); }
+
+void check_param(const FileContext& cx, const Command& c, const Param& p, const StringParam& sp, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  const std::string_view t = pf.source->text();
+  if (p.kind == ValueKind::String || p.kind == ValueKind::Expression || p.letter == 0) return;
+  const uint32_t after = p.span.begin + 1;  // right after the letter
+  // The line's code, not the command: RRF would also end the command at the 'm' of an unquoted "thermistor".
+  const uint32_t end = pf.line_of(c).code.end;
+  if (after >= end) return;  // no value at all: a different mistake
+  const char letter = sp.letter;
+  uint32_t b = after;
+  while (b < end && lex::is_blank(t[b])) ++b;
+  if (b >= end) return;
+  if (t[b] == '{') return;
+  if (t[b] == '"') {
+    if (b == after) return;
+    Fix fix{.title = fmt::format("remove the blank after '{}'", letter), .applicability = Applicability::Safe};
+    fix.edits.push_back(Edit{cx.at(Span{after, b}), ""});
+    out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
+               fmt::format("blank between '{}' and the quoted {} in '{}': RRF looks for the quote right after "
+                           "the letter and fails with 'expected a string expression'",
+                           letter, sp.what, lex::word(pf, c)))
+        .fix(std::move(fix));
+    return;
+  }
+  // Unquoted text: for M98 the rest of the command, otherwise up to the next blank.
+  uint32_t e = b;
+  if (sp.number == 98) e = end;
+  else
+    while (e < end && !lex::is_blank(t[e])) ++e;
+  const std::string_view text = t.substr(b, e - b);
+  bool has_letter = false;
+  for (char ch : text) has_letter = has_letter || lex::is_alpha(ch);
+  if (!has_letter && !sp.numbers_too) return;
+  if (text.find('"') != std::string_view::npos || text.find('{') != std::string_view::npos) return;
+  std::string why = sp.number == 98
+                        ? fmt::format("RRF {} needs quotes here and does not run the macro ('expected a string "
+                                      "expression')",
+                                      cx.target.version.str())
+                        : std::string("RRF 3 needs quotes here and rejects the command ('expected a string "
+                                      "expression')");
+  Fix fix{.title = fmt::format("quote '{}'", text), .applicability = Applicability::Unsafe};
+  fix.edits.push_back(Edit{cx.at(Span{after, e}), fmt::format("\"{}\"", text)});
+  out.report(kMeta, cx.at(Span{p.span.begin, e}),
+             fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why))
+      .fix(std::move(fix));
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  for (const Command& c : pf.commands) {
+    if (c.letter != 'M' || c.fraction >= 0) continue;
+    for (const StringParam& sp : kStringParams) {
+      if (sp.number != c.number || cx.target.version < needs_quotes_from(sp.number)) continue;
+      // RRF reads the first occurrence of the letter (Seen()).
+      if (const Param* p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, out);
+    }
+  }
+}
+
+}  // namespace
+
+extern const Rule unquoted_string{.meta = kMeta, .check_file = check};
+
+}  // namespace rrflint

@@ -1,0 +1,442 @@
+// The rrflint binary end to end: formats, colours, text output, fixes (--fix, --diff, --unsafe-fixes),
+// suppressions on the command line, repository walks (.gitignore, exclude, --force-exclude), stdin, the `rule`
+// command and the generated docs (which must not be stale).
+#include <catch2/catch.hpp>
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "cli_util.h"
+#include "lint/render/render.h"
+#include "lint/render/rule_docs.h"
+
+using namespace rrflint;
+using namespace rrflint::test;
+using nlohmann::json;
+
+namespace {
+
+const std::string kConfig =
+    "; a small machine\n"
+    "M584 X0 Y1 Z2\n"
+    "M9999 ; vendor code\n"                       // RRF101 warning
+    "G1 X0 ; rrflint: disable=unknown-command\n"  // RRF900 info, safe fix
+    "M98 P\"/macros/park.g\"\n";
+
+bool git_available() { return std::system("git --version >/dev/null 2>&1") == 0; }
+
+std::vector<std::string> lines_of(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("cli: text output: carets, notes with their own snippet, fix preview, summary, rule links", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0 Y200\n");
+  auto o = run_rrflint(t.root(), "check p");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "p/sys/config.g:3:1: warning RRF101 unknown-command: 'M9999'"));
+  CHECK(contains(o.out, " 3 | M9999 ; vendor code\n   | ^^^^^\n"));
+  CHECK(contains(o.out, "p/sys/config.g:4:7: info RRF900 unused-suppression:"));
+  CHECK(contains(o.out, "  help: remove the suppression comment (--fix)\n 4 + G1 X0\n"));
+  CHECK(contains(o.out, "0 errors, 1 warning, 1 info in 1 file (1 fixable with --fix)"));
+  CHECK(contains(o.out, "  RRF101 unknown-command: https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md"));
+}
+
+TEST_CASE("text: a note in another file has that file's name and snippet; carets cover the exact range", "[cli]") {
+  SourceManager sm;
+  const SourceFile& cfg = sm.add("p/sys/config.g", "/sys/config.g", "M584 X0 Y1 Z2\nT0\tP1 ; select\n");
+  const SourceFile& post = sm.add("p/sys/tpost0.g", "/sys/tpost0.g", "; wipe\nG1 X-30 F9000\n");
+  Diagnostic d;
+  d.code = "RRF326";
+  d.name = "tool-select-runs-macros-at-boot";
+  d.severity = Severity::Warning;
+  d.loc = Location{cfg.id(), Span{14, 16}};
+  d.message = "'T0' runs tpost0.g at boot";
+  d.notes.push_back(Note{Location{post.id(), Span{10, 16}}, "tpost0.g moves the machine here"});
+  Fix f;
+  f.title = "add 'P0'";
+  f.applicability = Applicability::Unsafe;
+  f.edits.push_back(Edit{Location{cfg.id(), Span{16, 16}}, " P0"});
+  d.fix = f;
+  RenderOptions o;
+  o.files_checked = 2;
+  std::ostringstream os;
+  render_text(os, sm, {d}, o);
+  CHECK(os.str() ==
+        "p/sys/config.g:2:1: warning RRF326 tool-select-runs-macros-at-boot: 'T0' runs tpost0.g at boot\n"
+        " 2 | T0 P1 ; select\n"
+        "   | ^^\n"
+        "  note: p/sys/tpost0.g:2:4: tpost0.g moves the machine here\n"
+        " 2 | G1 X-30 F9000\n"
+        "   |    ------\n"
+        "  help: add 'P0' (unsafe fix: --unsafe-fixes)\n"
+        " 2 + T0 P0 P1 ; select\n"
+        "\n"
+        "0 errors, 1 warning, 0 infos in 1 file (1 fixable with --fix --unsafe-fixes)\n"
+        "  RRF326 tool-select-runs-macros-at-boot: "
+        "https://github.com/rrflint/rrflint/blob/main/docs/rules/tool-select-runs-macros-at-boot.md\n");
+}
+
+TEST_CASE("cli: colours follow --color, FORCE_COLOR, NO_COLOR and TERM=dumb", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0\n");
+  const std::string esc = "\x1b[";
+  CHECK_FALSE(contains(run_rrflint(t.root(), "check p").out, esc));  // not a terminal
+  CHECK(contains(run_rrflint(t.root(), "check p", "FORCE_COLOR=1").out, esc));
+  CHECK_FALSE(contains(run_rrflint(t.root(), "check p", "FORCE_COLOR=0").out, esc));
+  CHECK(contains(run_rrflint(t.root(), "check p --color always").out, esc));
+  CHECK_FALSE(contains(run_rrflint(t.root(), "check p --color never", "FORCE_COLOR=1").out, esc));
+  // On a terminal: `script` gives rrflint a pseudo-terminal when it is installed.
+  if (std::system("command -v script >/dev/null 2>&1") == 0) {
+    const std::string base = "cd " + shell_quote(t.root().string()) + " && env -u FORCE_COLOR -u NO_COLOR ";
+    auto run_tty = [&](const std::string& env) {
+      const std::string out = (t / "tty.out").string();
+      const std::string cmd = base + env + " script -qec " +
+                              shell_quote(shell_quote(RRFLINT_BINARY) + " check p") + " /dev/null > " +
+                              shell_quote(out) + " 2>&1";
+      (void)std::system(cmd.c_str());
+      return t.read("tty.out");
+    };
+    CHECK(contains(run_tty("TERM=xterm"), esc));
+    CHECK_FALSE(contains(run_tty("TERM=xterm NO_COLOR=1"), esc));
+    CHECK_FALSE(contains(run_tty("TERM=dumb"), esc));
+  } else {
+    WARN("SKIPPED: the terminal part of the colour test needs `script` (bsdutils)");
+  }
+}
+
+TEST_CASE("cli: concise, json, json-lines and -o", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0\n");
+  auto o = run_rrflint(t.root(), "check p --format concise");
+  auto cl = lines_of(o.out);
+  REQUIRE(cl.size() == 2);
+  CHECK(cl[0].starts_with("p/sys/config.g:3:1: warning: 'M9999' "));
+  CHECK(cl[0].ends_with(" [RRF101 unknown-command]"));
+  CHECK(cl[1] ==
+        "p/sys/config.g:4:7: warning: unused suppression 'unknown-command' in 'disable': no such finding on this "
+        "line [RRF900 unused-suppression, info]");
+  o = run_rrflint(t.root(), "check p --format json");
+  json doc = json::parse(o.out);
+  CHECK(doc["version"] == 1);
+  CHECK(doc["diagnostics"].size() == 2);
+  CHECK(doc["diagnostics"][0]["url"] == "https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md");
+  CHECK(doc["summary"]["files_checked"] == 2);
+  o = run_rrflint(t.root(), "check p --format json-lines");
+  auto ls = lines_of(o.out);
+  REQUIRE(ls.size() == 2);
+  CHECK(json::parse(ls[1]) == doc["diagnostics"][1]);
+  o = run_rrflint(t.root(), "check p --format sarif -o out.sarif");
+  CHECK(o.out.empty());
+  CHECK(json::parse(t.read("out.sarif"))["version"] == "2.1.0");
+}
+
+TEST_CASE("cli: sarif URIs are relative to the git top-level, from any folder", "[cli][sarif]") {
+  TempTree t;
+  fs::create_directories(t / ".git");
+  t.write("printers/p/sys/config.g", kConfig);
+  t.write("printers/p/macros/park.g", "G1 X0\n");
+  auto o = run_rrflint(t / "printers", "check p --format sarif");
+  json doc = json::parse(o.out);
+  CHECK(doc["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] ==
+        "printers/p/sys/config.g");
+  fs::remove_all(t / ".git");
+  o = run_rrflint(t / "printers", "check p --format sarif");
+  doc = json::parse(o.out);
+  CHECK(doc["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] ==
+        "p/sys/config.g");
+}
+
+TEST_CASE("cli: github format is chosen under GITHUB_ACTIONS unless --format says otherwise", "[cli][github]") {
+  TempTree t;
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0\n");
+  auto o = run_rrflint(t.root(), "check p", "GITHUB_ACTIONS=true");
+  CHECK(o.code == 1);
+  auto ls = lines_of(o.out);
+  REQUIRE(ls.size() == 2);
+  CHECK(ls[0].starts_with("::warning file=p/sys/config.g,line=3,endLine=3,col=1,endColumn=6,title=rrflint RRF101 unknown-command::"));
+  CHECK(ls[1].starts_with("::notice file=p/sys/config.g,line=4,"));
+  o = run_rrflint(t.root(), "check p --format concise", "GITHUB_ACTIONS=true");
+  CHECK(lines_of(o.out)[0].starts_with("p/sys/config.g:3:1: warning:"));
+}
+
+TEST_CASE("cli: exit codes and --exit-zero, --fail-on", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0\n");
+  CHECK(run_rrflint(t.root(), "check p").code == 1);
+  CHECK(run_rrflint(t.root(), "check p --exit-zero").code == 0);
+  CHECK(run_rrflint(t.root(), "check p --fail-on error").code == 0);
+  t.write("i/sys/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");  // one info finding
+  CHECK(run_rrflint(t.root(), "check i").code == 0);
+  CHECK(run_rrflint(t.root(), "check i --fail-on info").code == 1);
+  CHECK(run_rrflint(t.root(), "check missing-folder").code == 2);
+  CHECK(run_rrflint(t.root(), "check p --select no-such-rule").code == 2);
+  CHECK(run_rrflint(t.root(), "check p --format yaml").code == 2);
+}
+
+TEST_CASE("cli: --fix applies safe fixes until stable, keeps line endings and permissions", "[cli][fix]") {
+  TempTree t;
+  t.write("p/sys/config.g",
+          "M584 X0 Y1 Z2\r\n"
+          "; rrflint: disable=unknown-command -- nothing below\r\n"
+          "G1 X0\r\n"
+          "; rrflint: enable=unknown-command\r\n"
+          "M9999\r\n");
+  t.write("q/sys/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
+  ::chmod((t / "p/sys/config.g").c_str(), 0640);
+  auto o = run_rrflint(t.root(), "check p q --fix");
+  CHECK(o.code == 1);  // the RRF101 on M9999 remains
+  CHECK(t.read("p/sys/config.g") == "M584 X0 Y1 Z2\r\nG1 X0\r\nM9999\r\n");  // two rounds: disable, then enable
+  CHECK(t.read("q/sys/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
+  CHECK(contains(o.out, "Fixed 3 findings."));
+  CHECK(contains(o.out, "RRF101"));
+  CHECK_FALSE(contains(o.out, "RRF900"));
+  struct stat st {};
+  ::stat((t / "p/sys/config.g").c_str(), &st);
+  CHECK((st.st_mode & 0777) == 0640);
+  // No temporary files are left behind.
+  for (const auto& e : fs::directory_iterator(t / "p/sys")) CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
+  // Nothing left to fix: the files stay as they are.
+  o = run_rrflint(t.root(), "check q --fix");
+  CHECK(o.code == 0);
+}
+
+TEST_CASE("cli: --fix writes through symbolic links", "[cli][fix]") {
+  TempTree t;
+  t.write("real/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
+  fs::create_directories(t / "p/sys");
+  fs::create_symlink(t / "real/config.g", t / "p/sys/config.g");
+  run_rrflint(t.root(), "check p --fix");
+  CHECK(fs::is_symlink(t / "p/sys/config.g"));
+  CHECK(t.read("real/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
+}
+
+TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there is something to fix", "[cli][fix]") {
+  TempTree t;
+  const std::string before = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\nG1 Y0\n";
+  t.write("p/sys/config.g", before);
+  auto o = run_rrflint(t.root(), "check p --diff");
+  CHECK(o.code == 1);
+  CHECK(o.out ==
+        "--- a/p/sys/config.g\n"
+        "+++ b/p/sys/config.g\n"
+        "@@ -1,3 +1,3 @@\n"
+        " M584 X0 Y1 Z2\n"
+        "-G1 X0 ; rrflint: disable=unknown-command\n"
+        "+G1 X0\n"
+        " G1 Y0\n");
+  CHECK(contains(o.err, "would fix 1 finding in 1 file"));
+  CHECK(t.read("p/sys/config.g") == before);
+  // The diff applies with patch(1)/git apply.
+  if (std::system("command -v patch >/dev/null 2>&1") == 0) {
+    t.write("fix.diff", o.out);
+    CHECK(std::system(("cd " + shell_quote(t.root().string()) + " && patch -s -p1 < fix.diff").c_str()) == 0);
+    CHECK(t.read("p/sys/config.g") == "M584 X0 Y1 Z2\nG1 X0\nG1 Y0\n");
+  }
+  o = run_rrflint(t.root(), "check p --diff");
+  CHECK(o.code == 0);
+  CHECK(o.out.empty());
+}
+
+TEST_CASE("cli: unsafe fixes only with --unsafe-fixes", "[cli][fix]") {
+  TempTree t;
+  const std::string before = "M584 X0 Y1 Z2 E3\nG10 P0 X0 Y0 Z0\nM563 P0 D0\n";
+  t.write("p/sys/config.g", before);
+  auto o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --fix");
+  CHECK(t.read("p/sys/config.g") == before);
+  if (!contains(o.out, "unsafe fix")) {
+    WARN("g10-tool-before-definition offers no unsafe fix here; the rest of this test is skipped");
+    return;
+  }
+  CHECK(contains(o.out, "fixable with --fix --unsafe-fixes"));
+  o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --fix --unsafe-fixes");
+  CHECK(t.read("p/sys/config.g") != before);
+  CHECK(o.code == 0);
+}
+
+TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found from its folder, --fix to stdout", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"tool.g\"\n");
+  t.write("p/sys/tool.g", "G1 X0\n");
+  t.write("p/.rrflint.toml", "fail-on = \"info\"\n");
+  const std::string text = "M9999\nG1 X0 ; rrflint: disable=unknown-command\n";
+  auto o = run_rrflint(t.root(), "check --format concise --stdin-filename p/sys/tool.g -", "", text);
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "p/sys/tool.g:1:1: warning:"));
+  CHECK(contains(o.out, "p/sys/tool.g:2:7: warning:"));
+  CHECK_FALSE(contains(o.out, "config.g"));
+  o = run_rrflint(t.root(), "check --fix --stdin-filename p/sys/tool.g -", "", text);
+  CHECK(o.out == "M9999\nG1 X0\n");
+  CHECK(contains(o.err, "RRF101"));
+  CHECK(t.read("p/sys/tool.g") == "G1 X0\n");
+}
+
+TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppress]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM9999 ; rrflint: disable=RRF101\nM9998 ; note\nM9997 ; rrflint: disable=line-too-long\n");
+  auto o = run_rrflint(t.root(), "check p --format concise --no-inline-suppressions");
+  CHECK(lines_of(o.out).size() == 3);
+  CHECK_FALSE(contains(o.out, "RRF900"));
+  // The flag takes its reason only after '=', so a path after it stays a path.
+  o = run_rrflint(t.root(), "check --add-suppressions p");
+  CHECK(o.code == 0);
+  CHECK(contains(o.err, "added 2 suppressions to 1 file"));
+  CHECK(t.read("p/sys/config.g") ==
+        "M584 X0 Y1 Z2\nM9999 ; rrflint: disable=RRF101\nM9998 ; note ; rrflint: disable=unknown-command\n"
+        "M9997 ; rrflint: disable=line-too-long,unknown-command\n");
+  CHECK(run_rrflint(t.root(), "check p").code == 0);
+  t.write("q/sys/config.g", "M9999\n");
+  o = run_rrflint(t.root(), "check q --add-suppressions='old board, kept on purpose'");
+  CHECK(t.read("q/sys/config.g") == "M9999 ; rrflint: disable=unknown-command -- old board, kept on purpose\n");
+  CHECK(run_rrflint(t.root(), "check q --add-suppressions --fix").code == 2);
+}
+
+TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
+  TempTree t;
+  t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
+  t.write("a/macros/Park Head", "M9992\n");       // extensionless macro with a space, inside card a
+  t.write("b/SYS/config.g", "M584 X0 Y1 Z2\nM9993\n");  // any case
+  t.write("c/sys/homeall.g", "M9994\n");          // a sys folder without config.g
+  t.write("d/macros/wipe", "M9995\n");            // a macros folder on its own
+  t.write("misc/test.g", "M9996\n");              // a lone file
+  t.write("misc/readme.txt", "M9997\n");          // not G-code
+  t.write("misc/notes", "M9998\n");               // no extension, not under macros/
+  auto o = run_rrflint(t.root(), "check . --format concise");
+  CHECK(o.code == 1);
+  for (const char* want : {"a/sys/config.g:2:1", "a/macros/Park Head:1:1", "b/SYS/config.g:2:1",
+                                  "c/sys/homeall.g:1:1", "d/macros/wipe:1:1", "misc/test.g:1:1"})
+    CHECK(contains(o.out, want));
+  CHECK_FALSE(contains(o.out, "readme.txt"));
+  CHECK_FALSE(contains(o.out, "misc/notes"));
+  // A folder inside a card reports only what is below it, with the card as context.
+  o = run_rrflint(t.root(), "check a/macros --format concise");
+  CHECK(contains(o.out, "a/macros/Park Head:1:1"));
+  CHECK_FALSE(contains(o.out, "config.g"));
+}
+
+TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude", "[cli][walk]") {
+  TempTree t;
+  t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
+  t.write("a/sys/scratch.g", "M9992\n");
+  t.write("old/sys/config.g", "M9993\n");
+  t.write("gen/out.g", "M9994\n");
+  t.write(".gitignore", "# generated\n/gen/\n*scratch*\n");
+  t.write(".rrflint.toml", "exclude = [\"old\"]\n");
+  auto check_walk = [&](const std::string& label) {
+    INFO(label);
+    auto o = run_rrflint(t.root(), "check . --format concise");
+    CHECK(contains(o.out, "a/sys/config.g:2:1"));
+    CHECK_FALSE(contains(o.out, "scratch.g"));
+    CHECK_FALSE(contains(o.out, "old/"));
+    CHECK_FALSE(contains(o.out, "gen/"));
+  };
+  check_walk("no repository: the built-in .gitignore matcher");
+  if (git_available()) {
+    REQUIRE(std::system(("git -C " + shell_quote(t.root().string()) + " init -q").c_str()) == 0);
+    check_walk("inside a git repository: git check-ignore");
+  } else {
+    WARN("SKIPPED: git is not installed; only the built-in .gitignore matcher was tested");
+  }
+  auto o = run_rrflint(t.root(), "check old/sys/config.g --format concise");
+  CHECK(contains(o.out, "old/sys/config.g:1:1"));  // named explicitly: linted
+  o = run_rrflint(t.root(), "check old/sys/config.g a/sys/scratch.g --format concise --force-exclude");
+  CHECK(o.out.empty());
+  CHECK(o.code == 0);
+  o = run_rrflint(t.root(), "check . --format concise --no-respect-gitignore");
+  CHECK(contains(o.out, "gen/out.g"));
+}
+
+TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url and fix", "[cli][docs]") {
+  TempTree t;
+  auto o = run_rrflint(t.root(), "rule RRF900");
+  CHECK(o.code == 0);
+  CHECK(o.out.starts_with("# unused-suppression (RRF900)\n"));
+  CHECK(contains(o.out, "## What it does"));
+  o = run_rrflint(t.root(), "rule unknown-command --format json");
+  json j = json::parse(o.out);
+  CHECK(j["code"] == "RRF101");
+  CHECK(j["url"] == "https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md");
+  o = run_rrflint(t.root(), "rule --all --format json");
+  j = json::parse(o.out);
+  for (const json& r : j) {
+    CHECK(r.contains("url"));
+    CHECK(std::set<std::string>{"none", "sometimes", "always"}.count(r["fix"]));
+  }
+  CHECK(run_rrflint(t.root(), "rule no-such-rule").code == 2);
+}
+
+TEST_CASE("docs: docs/rules and the README rule list are up to date with the rule registry", "[docs]") {
+  const fs::path dir = fs::path(RRFLINT_SOURCE_DIR) / "docs/rules";
+  const std::string fix = "regenerate with: rrflint rule --generate-docs docs/rules --readme README.md "
+                          "(or cmake --build <dir> --target rrflint_docs)";
+  // The first line that differs, so a failure says where without dumping both pages.
+  auto first_difference = [](const std::string& have, const std::string& want) {
+    auto a = lines_of(have), b = lines_of(want);
+    for (size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+      std::string x = i < a.size() ? a[i] : "(end of file)", y = i < b.size() ? b[i] : "(end of file)";
+      if (x != y) return "line " + std::to_string(i + 1) + ": has \"" + x + "\", should be \"" + y + "\"";
+    }
+    return std::string("(line endings differ)");
+  };
+  for (const auto& [name, text] : generated_rule_docs()) {
+    std::ifstream in(dir / name, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const bool fresh = ss.str() == text;
+    if (fresh) continue;
+    INFO("docs/rules/" << name << " is stale (" << (in ? first_difference(ss.str(), text) : "missing") << "); " << fix);
+    CHECK(fresh);
+  }
+  const auto want = generated_rule_docs();
+  for (const auto& e : fs::directory_iterator(dir)) {
+    INFO("docs/rules/" << e.path().filename().string() << " belongs to no rule; " << fix);
+    CHECK(want.count(e.path().filename().string()) == 1);
+  }
+  std::ifstream in(fs::path(RRFLINT_SOURCE_DIR) / "README.md", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  auto updated = replace_rule_list(ss.str(), readme_rule_list());
+  INFO("README.md has no '" << kRulesBegin << "' ... '" << kRulesEnd << "' markers");
+  REQUIRE(updated);
+  const bool fresh = *updated == ss.str();
+  if (!fresh) {
+    INFO("README.md's rule list is stale (" << first_difference(ss.str(), *updated) << "); " << fix);
+    CHECK(fresh);
+  }
+}
+
+TEST_CASE("ci: the problem matcher in .github reads every concise line", "[cli][github]") {
+  std::ifstream in(fs::path(RRFLINT_SOURCE_DIR) / ".github/rrflint-matcher.json");
+  REQUIRE(in);
+  const json m = json::parse(in);
+  const json& p = m["problemMatcher"][0]["pattern"][0];
+  const std::regex re(p["regexp"].get<std::string>());
+  TempTree t;
+  t.write("p/sys/all standby.g", "M9999\nG1 X0 ; rrflint: disable=unknown-command\n");
+  auto o = run_rrflint(t.root(), "check p --format concise");
+  auto ls = lines_of(o.out);
+  REQUIRE(ls.size() == 2);
+  std::smatch sm;
+  REQUIRE(std::regex_match(ls[0], sm, re));
+  CHECK(sm[p["file"].get<int>()] == "p/sys/all standby.g");
+  CHECK(sm[p["line"].get<int>()] == "1");
+  CHECK(sm[p["column"].get<int>()] == "1");
+  CHECK(sm[p["severity"].get<int>()] == "warning");
+  CHECK(sm[p["code"].get<int>()] == "RRF101");
+  REQUIRE(std::regex_match(ls[1], sm, re));  // an info finding
+  CHECK(sm[p["code"].get<int>()] == "RRF900");
+  CHECK(sm[p["message"].get<int>()] == "unused suppression 'unknown-command' in 'disable': no such finding on this line");
+}

@@ -1,0 +1,1 @@
+‡; CR onlyM83G10 P0 R0 S200M568 P0 A2

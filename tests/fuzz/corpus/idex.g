@@ -1,0 +1,8 @@
+†; seed: a small IDEX config
+M584 X0.0 Y0.1 Z0.2 U0.3 E0.4:0.5
+M563 P0 S"L" D0 H1
+M563 P1 S"R" D1 H2 X3
+G10 P0 X0 Y0 Z0
+G10 P1 U1 Y0 Z0
+M501
+T0 P0

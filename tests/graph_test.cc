@@ -1,0 +1,267 @@
+// The command graph (rrf-semantics §2.7-§2.9, §4): M98 resolution, M505, M501, runonce.g, tool macros, nesting
+// limits, cycles, maybe flags and entries. A segment is rendered as one line of tokens:
+//
+//   >/sys/a.g(M98)   a file starts, and why it runs      <   the file ends
+//   M98              a command (its word)                 =T0 / =T-1 / =T?   the moment a T selects a tool
+//   a leading ? marks a node that only maybe runs (inside if/while, or called from there)
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "lint/graph.h"
+
+using namespace rrflint;
+
+namespace {
+
+struct Built {
+  SourceManager sources;
+  MemoryReader reader;
+  std::unique_ptr<Machine> machine;
+  Graph graph;
+};
+
+std::unique_ptr<Built> build(const std::map<std::string, std::string>& files, Version fw = kLatestVersion) {
+  auto b = std::make_unique<Built>();
+  for (const auto& [path, text] : files) b->reader.add(path, text);
+  b->machine = std::make_unique<Machine>(b->sources, b->reader);
+  GraphOptions o;
+  o.firmware = fw;
+  b->graph = build_graph(*b->machine, o);
+  return b;
+}
+
+std::string token(const Built& b, const Node& n) {
+  std::string out = n.maybe ? "?" : "";
+  const FileUnit& u = b.machine->unit(n.unit);
+  switch (n.kind) {
+    case NodeKind::Enter: return out + ">" + u.sd_path + "(" + std::string(call_kind_name(n.call)) + ")";
+    case NodeKind::Leave: return out + "<";
+    case NodeKind::Command: return out + std::string(u.parsed.text(u.parsed.commands[n.index].word));
+    case NodeKind::ToolSelect: {
+      if (n.index != UINT32_MAX) return out + "=T" + std::to_string(n.index);
+      const Command& c = u.parsed.commands[b.graph.nodes[n.call_site].index];
+      return out + (c.has_number && c.number < 0 ? "=T-1" : "=T?");
+    }
+  }
+  return "!";
+}
+
+std::string trace(const Built& b, const Segment& s) {
+  std::string out;
+  for (NodeId id = s.begin; id < s.end; ++id) out += (out.empty() ? "" : " ") + token(b, b.graph.nodes[id]);
+  return out;
+}
+
+std::string boot(const Built& b) {
+  for (const Segment& s : b.graph.segments)
+    if (s.boot) return trace(b, s);
+  return "(no boot)";
+}
+
+std::vector<std::string> entries(const Built& b) {
+  std::vector<std::string> out;
+  for (const Segment& s : b.graph.segments)
+    if (!s.boot) out.push_back(trace(b, s));
+  return out;
+}
+
+std::vector<std::string> events(const Built& b) {
+  std::vector<std::string> out;
+  for (const GraphEvent& e : b.graph.events) {
+    std::string kind;
+    switch (e.kind) {
+      case GraphEvent::Kind::MissingFile: kind = "missing"; break;
+      case GraphEvent::Kind::Cycle: kind = "cycle"; break;
+      case GraphEvent::Kind::TooDeep: kind = "too-deep(" + std::to_string(e.limit) + ")"; break;
+      case GraphEvent::Kind::OutsideRoot: kind = "outside-root"; break;
+      case GraphEvent::Kind::OtherVolume: kind = "other-volume"; break;
+      case GraphEvent::Kind::UnreadableFile: kind = "unreadable"; break;
+    }
+    const Node& n = b.graph.nodes[e.node];
+    out.push_back(kind + " " + e.path + " at " + b.machine->unit(n.unit).sd_path + ":" + std::to_string(n.index));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("graph: M98 paths are relative to /sys unless absolute", "[graph]") {
+  auto b = build({
+      {"/sys/config.g",
+       "M98 P\"a.g\"\nM98 P\"0:/macros/m.g\"\nM98 P\"/sys/sub/b.g\"\nM98 P\"../macros/m.g\"\nM98 P\"A.G\"\n"
+       "M98 Psub/b.g\n"},
+      {"/sys/a.g", "G1 X1\n"},
+      {"/sys/sub/b.g", "G1 X2\n"},
+      {"/macros/m.g", "G1 X3\n"},
+  });
+  CHECK(boot(*b) ==
+        ">/sys/config.g(boot) M98 >/sys/a.g(M98) G1 < M98 >/macros/m.g(M98) G1 < M98 >/sys/sub/b.g(M98) G1 < "
+        "M98 >/macros/m.g(M98) G1 < M98 >/sys/a.g(M98) G1 < M98 >/sys/sub/b.g(M98) G1 < <");
+  CHECK(events(*b).empty());
+  CHECK(entries(*b).empty());  // every file ran at boot
+}
+
+TEST_CASE("graph: missing files, other volumes and paths above the root are events", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M98 P\"nothere.g\"\nM98 P\"../../up.g\"\nM98 P\"1:/sys/x.g\"\nM98 P{var.f}\nM83\n"},
+  });
+  CHECK(boot(*b) == ">/sys/config.g(boot) M98 M98 M98 M98 M83 <");
+  CHECK(events(*b) == std::vector<std::string>{"missing /sys/nothere.g at /sys/config.g:0",
+                                               "outside-root ../../up.g at /sys/config.g:1",
+                                               "other-volume 1:/sys/x.g at /sys/config.g:2"});
+}
+
+TEST_CASE("graph: M505 changes the folder for later relative names", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M98 P\"a.g\"\nM505 P\"alt\"\nM98 P\"a.g\"\nM501\nif true\n  M505 P\"/sys\"\nM98 P\"a.g\"\n"},
+      {"/sys/a.g", "M83\n"},
+      {"/sys/alt/a.g", "M82\n"},
+      {"/sys/alt/config-override.g", "G10 P0 X1\n"},
+  });
+  CHECK(boot(*b) ==
+        ">/sys/config.g(boot) M98 >/sys/a.g(M98) M83 < M505 M98 >/sys/alt/a.g(M98) M82 < "
+        "M501 >/sys/alt/config-override.g(M501) G10 < ?M505 M98 >/sys/alt/a.g(M98) M82 < <");
+}
+
+TEST_CASE("graph: cycles are reported and not followed", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M98 P\"a.g\"\n"},
+      {"/sys/a.g", "M98 P\"b.g\"\n"},
+      {"/sys/b.g", "M98 P\"a.g\"\nM98 P\"b.g\"\nM83\n"},
+  });
+  CHECK(boot(*b) == ">/sys/config.g(boot) M98 >/sys/a.g(M98) M98 >/sys/b.g(M98) M98 M98 M83 < < <");
+  CHECK(events(*b) ==
+        std::vector<std::string>{"cycle /sys/a.g at /sys/b.g:0", "cycle /sys/b.g at /sys/b.g:1"});
+}
+
+TEST_CASE("graph: the nesting limit depends on the version", "[graph]") {
+  // config.g uses one level: 10 levels from 3.4, 7 for 3.01-3.3.
+  std::map<std::string, std::string> files{{"/sys/config.g", "M98 P\"n1.g\"\n"}};
+  for (int i = 1; i < 12; ++i) files["/sys/n" + std::to_string(i) + ".g"] = "M98 P\"n" + std::to_string(i + 1) + ".g\"\n";
+  files["/sys/n12.g"] = "M83\n";
+  auto deepest = [](const Built& b) {
+    int d = 0;
+    for (const Node& n : b.graph.nodes) d = std::max<int>(d, n.depth);
+    return d;
+  };
+  auto v34 = build(files, Version(3, 4, 0));
+  CHECK(deepest(*v34) == 10);
+  CHECK(events(*v34) == std::vector<std::string>{"too-deep(10) /sys/n10.g at /sys/n9.g:0"});
+  auto v33 = build(files, Version(3, 3, 0));
+  CHECK(deepest(*v33) == 7);
+  CHECK(events(*v33) == std::vector<std::string>{"too-deep(7) /sys/n7.g at /sys/n6.g:0"});
+  auto v31 = build(files, Version(3, 1, 1));
+  CHECK(deepest(*v31) == 7);
+}
+
+TEST_CASE("graph: config-override.g runs at the M501, runonce.g after config.g", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M563 P0 S\"T\"\nM501\nG10 P0 X1\n"},
+      {"/sys/config-override.g", "G10 P0 X5\n"},
+      {"/sys/runonce.g", "M500\n"},
+  });
+  CHECK(boot(*b) ==
+        ">/sys/config.g(boot) M563 M501 >/sys/config-override.g(M501) G10 < G10 < >/sys/runonce.g(runonce) M500 <");
+  // Without M501, config-override.g is an entry of its own.
+  auto n = build({{"/sys/config.g", "M83\n"}, {"/sys/config-override.g", "G10 P0 X5\n"}});
+  CHECK(entries(*n) == std::vector<std::string>{">/sys/config-override.g(entry) G10 <"});
+  // The M501 node is the call site of the override file.
+  const Node& enter = b->graph.nodes[3];
+  REQUIRE(enter.kind == NodeKind::Enter);
+  CHECK(enter.call == CallKind::M501);
+  CHECK(b->graph.nodes[enter.call_site].index == 1);
+}
+
+TEST_CASE("graph: T runs tfree, tpre, tpost unless P says otherwise", "[graph]") {
+  std::map<std::string, std::string> files{
+      {"/sys/config.g", "T0\nT1\nT1\nT-1\nT1 P0\nT0 P2\nT\nT{global.t}\n"},
+      {"/sys/tfree0.g", "M83\n"}, {"/sys/tpre0.g", "M83\n"}, {"/sys/tpost0.g", "M83\n"},
+      {"/sys/tfree1.g", "M83\n"}, {"/sys/tpre1.g", "M83\n"}, {"/sys/tpost1.g", "M83\n"},
+  };
+  auto b = build(files);
+  CHECK(boot(*b) ==
+        ">/sys/config.g(boot) "
+        "T0 >/sys/tpre0.g(tpre) M83 < =T0 >/sys/tpost0.g(tpost) M83 < "
+        "T1 >/sys/tfree0.g(tfree) M83 < >/sys/tpre1.g(tpre) M83 < =T1 >/sys/tpost1.g(tpost) M83 < "
+        "T1 "
+        "T-1 >/sys/tfree1.g(tfree) M83 < =T-1 "
+        "T1 =T1 "
+        "T0 >/sys/tpre0.g(tpre) M83 < =T0 "
+        "T "
+        "T{global.t} ?=T? <");
+}
+
+TEST_CASE("graph: generic tpre.g/tpost.g/tfree.g only from 3.5", "[graph]") {
+  std::map<std::string, std::string> files{
+      {"/sys/config.g", "T0\nT1\n"}, {"/sys/tpre.g", "M83\n"}, {"/sys/tfree.g", "M82\n"}, {"/sys/tpost1.g", "M84\n"}};
+  auto v35 = build(files, Version(3, 5, 0));
+  CHECK(boot(*v35) ==
+        ">/sys/config.g(boot) T0 >/sys/tpre.g(tpre) M83 < =T0 "
+        "T1 >/sys/tfree.g(tfree) M82 < >/sys/tpre.g(tpre) M83 < =T1 >/sys/tpost1.g(tpost) M84 < <");
+  auto v34 = build(files, Version(3, 4, 6));
+  CHECK(boot(*v34) == ">/sys/config.g(boot) T0 =T0 T1 =T1 >/sys/tpost1.g(tpost) M84 < <");
+  // The generic files are not reached at boot on 3.4, so they are entries there.
+  CHECK(entries(*v34) == std::vector<std::string>{">/sys/tfree.g(entry) M82 <", ">/sys/tpre.g(entry) M83 <"});
+}
+
+TEST_CASE("graph: nodes inside if/while are maybe, and so is everything a maybe call runs", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M83\nif exists(global.x)\n  M98 P\"a.g\"\nelse\n  T0\nwhile iterations < 2\n  M82\nM84\n"},
+      {"/sys/a.g", "M98 P\"b.g\"\n"},
+      {"/sys/b.g", "G1 X1\n"},
+      {"/sys/tpre0.g", "G1 X2\n"},
+  });
+  CHECK(boot(*b) ==
+        ">/sys/config.g(boot) M83 ?M98 ?>/sys/a.g(M98) ?M98 ?>/sys/b.g(M98) ?G1 ?< ?< "
+        "?T0 ?>/sys/tpre0.g(tpre) ?G1 ?< ?=T0 ?M82 M84 <");
+}
+
+TEST_CASE("graph: files not reached at boot become entries", "[graph]") {
+  auto b = build({
+      {"/sys/config.g", "M98 P\"a.g\"\n"},
+      {"/sys/a.g", "M83\n"},
+      {"/sys/homeall.g", "G28 X\nM98 P\"a.g\"\n"},
+      {"/sys/config.g.bak", "M82\n"},
+      {"/sys/notes.txt", "not gcode\n"},
+      {"/macros/Park head", "G1 X0\n"},
+      {"/macros/.hidden.g", "G1 X0\n"},
+      {"/filaments/PLA/load.g", "T0\n"},
+      {"/sys/tpre0.g", "G4 S1\n"},
+      {"/gcodes/part.gcode", "G1 X1\n"},
+  });
+  CHECK(boot(*b) == ">/sys/config.g(boot) M98 >/sys/a.g(M98) M83 < <");
+  CHECK(entries(*b) == std::vector<std::string>{
+                           ">/filaments/PLA/load.g(entry) T0 >/sys/tpre0.g(tpre) G4 < =T0 <",
+                           ">/macros/Park head(entry) G1 <",
+                           ">/sys/homeall.g(entry) G28 M98 >/sys/a.g(M98) M83 < <",
+                           ">/sys/tpre0.g(entry) G4 <",
+                       });
+  // Without config.g every macro is an entry.
+  auto lone = build({{"/macros/m.g", "M83\n"}});
+  CHECK(boot(*lone) == "(no boot)");
+  CHECK(entries(*lone) == std::vector<std::string>{">/macros/m.g(entry) M83 <"});
+}
+
+TEST_CASE("graph: Enter and Leave link to their call site", "[graph]") {
+  auto b = build({{"/sys/config.g", "M83\nM98 P\"a.g\"\n"}, {"/sys/a.g", "G1 X1\n"}});
+  const auto& n = b->graph.nodes;
+  REQUIRE(n.size() == 7);
+  CHECK(n[0].kind == NodeKind::Enter);
+  CHECK(n[0].depth == 1);
+  CHECK(n[0].call_site == kNoNode);
+  CHECK(n[3].kind == NodeKind::Enter);
+  CHECK(n[3].call_site == 2);
+  CHECK(n[3].enter == 0);
+  CHECK(n[3].depth == 2);
+  CHECK(n[4].enter == 3);
+  CHECK(n[5].kind == NodeKind::Leave);
+  CHECK(n[5].enter == 3);
+  CHECK(n[6].kind == NodeKind::Leave);
+  REQUIRE(b->graph.segments.size() == 1);
+  CHECK(b->graph.segments[0].begin == 0);
+  CHECK(b->graph.segments[0].end == 7);
+}

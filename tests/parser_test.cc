@@ -1,0 +1,407 @@
+// Parser tests, one TEST_CASE per point of rrf-semantics §1. Lines are rendered compactly (ninja's style):
+//
+//   cmd: G1 X=10 Y=20 | M400      commands of one line, separated by '|'
+//   cmd@4?~NC: …                  indent 4, conditional (?), in a loop (~), line number (N), checksum (C)
+//   meta: if var.x > 1            meta command with its argument
+//   blank / comment / bad
+//
+// Parameters: X=10 (number), E=[0.3:0.4] (colon list), P=<file.g> (unquoted text), S="x" (string),
+// T={…} (expression), X (no value), 'a=5 (lowercase axis), _=<text> (unlettered); suffix ^e = an E swallowed
+// as an exponent, ^b = a blank before ':' ended the list.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "lint/parser.h"
+
+using namespace rrflint;
+
+namespace {
+
+struct Parsed {
+  std::unique_ptr<SourceFile> source;
+  ParsedFile pf;
+};
+
+Parsed parse_text(std::string text, ParseOptions opts = {}) {
+  Parsed p;
+  p.source = std::make_unique<SourceFile>(0, "config.g", "/sys/config.g", std::move(text));
+  p.pf = parse(*p.source, opts);
+  return p;
+}
+
+std::string render_param(const ParsedFile& pf, const Param& p) {
+  std::string out;
+  if (p.letter == 0) out = "_";
+  else if (p.letter >= 'a') out = std::string("'") + p.letter;
+  else out = std::string(1, p.letter);
+  const std::string v(pf.text(p.value));
+  switch (p.kind) {
+    case ValueKind::None: break;
+    case ValueKind::List: out += "=[" + v + "]"; break;
+    case ValueKind::Text: out += "=<" + v + ">"; break;
+    default: out += "=" + v; break;
+  }
+  if (p.exponent_letter) out += "^e";
+  if (p.blank_before_colon) out += "^b";
+  return out;
+}
+
+std::string render_command(const ParsedFile& pf, const Command& c) {
+  std::string out(1, c.letter);
+  if (c.number_expr) out += "{}";
+  else if (c.number != -1 || pf.text(c.word).find('-') != std::string_view::npos) out += std::to_string(c.number);
+  if (c.fraction >= 0) out += "." + std::to_string(c.fraction);
+  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) out += " " + render_param(pf, *p);
+  return out;
+}
+
+std::string render_line(const ParsedFile& pf, const Line& l) {
+  std::string out;
+  switch (l.kind) {
+    case LineKind::Blank: out = "blank"; break;
+    case LineKind::Comment: out = "comment"; break;
+    case LineKind::Commands: out = "cmd"; break;
+    case LineKind::Meta: out = "meta"; break;
+    case LineKind::Bad: out = "bad"; break;
+  }
+  if (l.indent) out += "@" + std::to_string(l.indent);
+  if (l.conditional) out += "?";
+  if (l.in_loop) out += "~";
+  if (l.line_number) out += "N";
+  if (l.checksum) out += "C";
+  if (l.after_nul) out += "0";
+  if (l.kind == LineKind::Commands) {
+    out += ":";
+    for (uint32_t i = 0; i < l.command_count; ++i)
+      out += (i ? " | " : " ") + render_command(pf, pf.commands[l.first_command + i]);
+  } else if (l.kind == LineKind::Meta) {
+    out += ": " + std::string(meta_keyword(l.meta));
+    if (!l.meta_name.empty()) out += " " + std::string(pf.text(l.meta_name)) + " =";
+    if (!l.meta_arg.empty()) out += " " + std::string(pf.text(l.meta_arg));
+  }
+  return out;
+}
+
+/// Every logical line of `text`, rendered and joined with newlines.
+std::string dump(std::string text, ParseOptions opts = {}) {
+  Parsed p = parse_text(std::move(text), opts);
+  std::string out;
+  for (const Line& l : p.pf.lines) out += (out.empty() ? "" : "\n") + render_line(p.pf, l);
+  return out;
+}
+
+/// The first line only.
+std::string one(std::string text) {
+  Parsed p = parse_text(std::move(text));
+  return p.pf.lines.empty() ? "" : render_line(p.pf, p.pf.lines[0]);
+}
+
+/// The parse errors as "offset: message".
+std::vector<std::string> errors(std::string text) {
+  Parsed p = parse_text(std::move(text));
+  std::vector<std::string> out;
+  for (const ParseError& e : p.pf.errors) out.push_back(std::to_string(e.span.begin) + ": " + e.message);
+  return out;
+}
+
+std::string text_of(const Parsed& p, Span s) { return std::string(p.pf.text(s)); }
+
+}  // namespace
+
+// §1.1 Line assembly.
+TEST_CASE("parser: lines end at LF, CRLF and lone CR", "[parser]") {
+  CHECK(dump("G1 X1\nG1 X2\n") == "cmd: G1 X=1\ncmd: G1 X=2");
+  CHECK(dump("G1 X1\r\nG1 X2\r\n") == "cmd: G1 X=1\ncmd: G1 X=2");
+  // rrflint reads a CR-only file line by line, as its author meant it (RRF107 reports the firmware's view).
+  CHECK(dump("G1 X1\rG1 X2\r") == "cmd: G1 X=1\ncmd: G1 X=2");
+  // No final newline: the last line still counts; a final newline adds no empty line.
+  CHECK(dump("M83\nG1 X2") == "cmd: M83\ncmd: G1 X=2");
+  CHECK(dump("M83\n\n") == "cmd: M83\nblank");
+  CHECK(dump("") == "blank");
+
+  Parsed p = parse_text("G1 X1\r\nM83\n");
+  REQUIRE(p.pf.lines.size() == 2);
+  CHECK(p.pf.lines[0].span == Span{0, 5});
+  CHECK(p.pf.lines[1].span == Span{7, 10});
+  CHECK(p.source->endings().crlf == 1);
+  CHECK(p.source->endings().lf == 1);
+}
+
+TEST_CASE("parser: NUL ends a line and the rest is a new line", "[parser]") {
+  Parsed p = parse_text(std::string("G1 X1\0G1 Y2\nM83\n", 16));
+  CHECK(render_line(p.pf, p.pf.lines[0]) == "cmd: G1 X=1");
+  CHECK(render_line(p.pf, p.pf.lines[1]) == "cmd0: G1 Y=2");
+  CHECK(render_line(p.pf, p.pf.lines[2]) == "cmd: M83");
+  REQUIRE(p.pf.errors.size() == 1);
+  CHECK(p.pf.errors[0].span == Span{5, 6});
+  CHECK(p.pf.errors[0].message.starts_with("NUL byte"));
+}
+
+TEST_CASE("parser: 0x7F discards the rest of the line", "[parser]") {
+  Parsed p = parse_text("G1 X1\x7fY2\nM83\n");
+  CHECK(render_line(p.pf, p.pf.lines[0]) == "cmd: G1 X=1");
+  CHECK(render_line(p.pf, p.pf.lines[1]) == "cmd: M83");
+  REQUIRE(p.pf.errors.size() == 1);
+  CHECK(p.pf.errors[0].span == Span{5, 8});
+  CHECK(p.pf.errors[0].message.starts_with("byte 0x7F"));
+}
+
+// §1.2 Indentation.
+TEST_CASE("parser: a blank counts 1, a tab moves to the next multiple of 4", "[parser]") {
+  auto indent = [](std::string text) { return parse_text(std::move(text)).pf.lines[0].indent; };
+  CHECK(indent("G1") == 0);
+  CHECK(indent("  G1") == 2);
+  CHECK(indent("\tG1") == 4);
+  CHECK(indent("\t\tG1") == 8);
+  CHECK(indent("   \tG1") == 4);
+  CHECK(indent("    \tG1") == 8);
+  CHECK(indent(" \t G1") == 5);
+  CHECK(indent("\t  G1") == 6);
+
+  Parsed mixed = parse_text("if true\n\tM83\nif true\n    M82\n");
+  CHECK(mixed.pf.lines[1].indent_tabs);
+  CHECK_FALSE(mixed.pf.lines[1].indent_spaces);
+  CHECK(mixed.pf.lines[3].indent_spaces);
+  CHECK(mixed.pf.mixed_indentation);
+  CHECK_FALSE(parse_text("if true\n  M83\nif true\n  M82\n").pf.mixed_indentation);
+}
+
+// §1.3 Line numbers and checksums.
+TEST_CASE("parser: N line numbers and * checksums", "[parser]") {
+  Parsed p = parse_text("N10 G1 X5*42 ; move\n");
+  const Line& l = p.pf.lines[0];
+  CHECK(render_line(p.pf, l) == "cmdNC: G1 X=5");
+  CHECK(text_of(p, l.code) == "G1 X5");
+  CHECK(text_of(p, l.comment) == "; move");
+  CHECK(l.stored_length == 5);
+  CHECK(one("n7 M83") == "cmdN: M83");
+  // '*' starts a checksum only after N and outside braces; otherwise it is an ordinary character.
+  CHECK(one("G1 X{2*3}") == "cmd: G1 X={2*3}");
+  CHECK(one("N3 G1 X{2*3}*17") == "cmdNC: G1 X={2*3}");
+  CHECK(one("G1 X5*3") == "cmd: G1 X=5*3");
+  // 'N' followed by a non-digit is not a line number.
+  CHECK(one("NG1") == "bad");
+}
+
+// §1.4 Comments.
+TEST_CASE("parser: comments", "[parser]") {
+  CHECK(dump("; whole line\n  ; indented\n\t; tabbed\n") == "comment\nblank@2\nblank@4");
+  Parsed p = parse_text("G1 X5 ; to the left\n");
+  CHECK(text_of(p, p.pf.lines[0].comment) == "; to the left");
+  CHECK(text_of(p, p.pf.lines[0].code) == "G1 X5");
+  // ';' inside quotes is text; inside braces it still ends the line.
+  CHECK(one("M291 P\"a;b\" S1") == "cmd: M291 P=\"a;b\" S=1");
+  Parsed braces = parse_text("G1 X{1;2}\n");
+  CHECK(text_of(braces, braces.pf.lines[0].code) == "G1 X{1");
+  CHECK(text_of(braces, braces.pf.lines[0].comment) == ";2}");
+  // The cut is recorded for RRF113 (semicolon-in-expression), not as a syntax error.
+  CHECK(braces.pf.errors.empty());
+  REQUIRE(braces.pf.semicolon_cuts.size() == 1);
+  CHECK(text_of(braces, braces.pf.semicolon_cuts[0]) == "{1");
+  Parsed meta = parse_text("echo {\"a\" ^ \"b\" ; \"c\"}\n");
+  CHECK(meta.pf.errors.empty());
+  REQUIRE(meta.pf.semicolon_cuts.size() == 1);
+  CHECK(text_of(meta, meta.pf.semicolon_cuts[0]) == "{\"a\" ^ \"b\"");
+}
+
+TEST_CASE("parser: ( ) comments only in CNC mode, after M453", "[parser]") {
+  // In FFF mode the text is part of the command: "(" stays in X's value and "slow)" starts an S parameter.
+  CHECK(one("G1 X5 (slow) Y6") == "cmd: G1 X=5 ( S L O W=<)> Y=6");
+  CHECK(dump("M453\nG1 X5 (slow) Y6\nM452\nG1 X5 (a) Y6\n") ==
+        "cmd: M453\ncmd: G1 X=5 Y=6\ncmd: M452\ncmd: G1 X=5 ( A=<)> Y=6");
+  Parsed cnc = parse_text("G1 X5 (slow) Y6\n", ParseOptions{.cnc_mode = true});
+  CHECK(cnc.pf.lines[0].stored_length == std::string("G1 X5  Y6").size());
+  // Inside braces '(' is an expression bracket, also in CNC mode.
+  Parsed expr = parse_text("G1 X{(1+2)*3}\n", ParseOptions{.cnc_mode = true});
+  CHECK(render_line(expr.pf, expr.pf.lines[0]) == "cmd: G1 X={(1+2)*3}");
+}
+
+// §1.6 The command word.
+TEST_CASE("parser: command words", "[parser]") {
+  CHECK(one("g1 x10") == "cmd: G1 X=10");
+  CHECK(one("m563 p0 s\"T\"") == "cmd: M563 P=0 S=\"T\"");
+  CHECK(one("G59.3") == "cmd: G59.3");
+  CHECK(one("M569.1 P0.2 S1") == "cmd: M569.1 P=0.2 S=1");
+  // One fractional digit only: the second is left over as unlettered text.
+  CHECK(one("G59.12") == "cmd: G59.1 _=<2>");
+  CHECK(one("T-1") == "cmd: T-1");
+  CHECK(one("T3 P0") == "cmd: T3 P=0");
+  CHECK(one("T") == "cmd: T");
+  CHECK(one("T{state.nextTool}") == "cmd: T{} T={state.nextTool}");
+
+  Parsed p = parse_text("  M569.1 P0.2 ; c\n");
+  const Command& c = p.pf.commands[0];
+  CHECK(c.is('M', 569, 1));
+  CHECK_FALSE(c.is('M', 569));
+  CHECK(text_of(p, c.word) == "M569.1");
+  CHECK(text_of(p, c.span) == "M569.1 P0.2");
+  CHECK(c.span == Span{2, 13});
+
+  // T-1 (deselect) and a bare T (report) must be told apart.
+  Parsed t = parse_text("T-1\nT\n");
+  CHECK(t.pf.commands[0].number == -1);
+  CHECK(t.pf.commands[0].has_number);
+  CHECK_FALSE(t.pf.commands[1].has_number);
+}
+
+TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[parser]") {
+  CHECK(errors("X10 Y20") == std::vector<std::string>{"0: Bad command: 'X10 Y20': a line must start with G, M or T"});
+  CHECK(errors("IF true") ==
+        std::vector<std::string>{"0: Bad command: 'IF true': meta-command keywords must be lowercase"});
+  CHECK(errors("Echo \"x\"").size() == 1);
+  CHECK(errors("G") == std::vector<std::string>{"0: expected a number after 'G'"});
+  CHECK(one("ifx") == "bad");
+}
+
+// §1.7 Several commands on one line.
+TEST_CASE("parser: G and M start a new command, T and 'g do not", "[parser]") {
+  CHECK(one("G1 X10 M400") == "cmd: G1 X=10 | M400");
+  CHECK(one("G1 X10G1 Y20") == "cmd: G1 X=10 | G1 Y=20");
+  CHECK(one("g1 x1 m83") == "cmd: G1 X=1 | M83");
+  CHECK(one("G1 X10 T1") == "cmd: G1 X=10 T=1");
+  CHECK(one("G1 X10 'g5") == "cmd: G1 X=10 'g=5");
+  // Inside quotes and braces G and M are text.
+  CHECK(one("M291 P\"Go Mad\" S1") == "cmd: M291 P=\"Go Mad\" S=1");
+  CHECK(one("G1 X{move.axes[0].max}") == "cmd: G1 X={move.axes[0].max}");
+  Parsed p = parse_text("G1 X10 M400 ; c\n");
+  CHECK(p.pf.lines[0].command_count == 2);
+  CHECK(text_of(p, p.pf.commands[0].span) == "G1 X10");
+  CHECK(text_of(p, p.pf.commands[1].span) == "M400");
+  CHECK(p.pf.commands[1].line == 0);
+}
+
+// §1.8 Parameters.
+TEST_CASE("parser: parameter letters", "[parser]") {
+  CHECK(one("G1X10Y20") == "cmd: G1 X=10 Y=20");
+  CHECK(one("M584 'a0.5 'B0.6") == "cmd: M584 'a=0.5 'b=0.6");
+  CHECK(one("M584 a0.5") == "cmd: M584 A=0.5");
+  // E straight after a digit is an exponent; after a blank it is a parameter.
+  CHECK(one("G1 X80E420") == "cmd: G1 X=80E420^e");
+  CHECK(one("M584 X0 Y1 Z2E3") == "cmd: M584 X=0 Y=1 Z=2E3^e");
+  CHECK(one("G1 X80 E4") == "cmd: G1 X=80 E=4");
+  CHECK(one("G1 E4") == "cmd: G1 E=4");
+  CHECK(one("G1 X1.5e-3") == "cmd: G1 X=1.5e-3^e");
+  CHECK(one("M584 X") == "cmd: M584 X");
+
+  Parsed p = parse_text("G1 X1 Y2 X3\n");
+  const Command& c = p.pf.commands[0];
+  const Param* x = p.pf.find(c, 'X');
+  REQUIRE(x);
+  CHECK(text_of(p, x->value) == "1");
+  CHECK(x->span == Span{3, 5});
+  CHECK(p.pf.find(c, 'Z') == nullptr);
+  CHECK(c.param_count == 3);
+  Parsed lower = parse_text("G1 'a5\n");
+  const Param* a = lower.pf.find(lower.pf.commands[0], 'a');
+  REQUIRE(a);
+  CHECK(a->span == Span{3, 6});
+  CHECK(lower.pf.find(lower.pf.commands[0], 'A') == nullptr);
+}
+
+// §1.9 Values.
+TEST_CASE("parser: value kinds and spans", "[parser]") {
+  CHECK(one("G1 X-3.5 Y+2 Z.5") == "cmd: G1 X=-3.5 Y=+2 Z=.5");
+  CHECK(one("M569 P1.2 S0") == "cmd: M569 P=1.2 S=0");
+  CHECK(one("M584 E0.3:0.4:1.0") == "cmd: M584 E=[0.3:0.4:1.0]");
+  CHECK(one("M92 E420: 430") == "cmd: M92 E=[420: 430]");
+  CHECK(one("M92 E420 :430") == "cmd: M92 E=[420 :430]^b");
+  CHECK(one("M584 E{global.d}:0.4") == "cmd: M584 E=[{global.d}:0.4]");
+  CHECK(one("M550 PBench printer 2") == "cmd: M550 P=<Bench printer 2>");
+  CHECK(one("M98 Pmacro.g") == "cmd: M98 P=<macro.g>");
+  CHECK(one("M117 Hello world") == "cmd: M117 _=<Hello world>");
+  CHECK(one("M117 \"Hi\"") == "cmd: M117 _=\"Hi\"");
+  // Strings: "" is a quote, 'x a lowercase letter; G/M inside are text.
+  CHECK(one("M550 P\"A \"\"big\"\" 'Machine\"") == "cmd: M550 P=\"A \"\"big\"\" 'Machine\"");
+  // Braces nest, and a string inside may hold a brace.
+  CHECK(one("M291 P{\"a}\" ^ {1 + (2)}} S1") == "cmd: M291 P={\"a}\" ^ {1 + (2)}} S=1");
+  Parsed p = parse_text("M291 P{\"x\"} S1\n");
+  const Param* pp = p.pf.find(p.pf.commands[0], 'P');
+  REQUIRE(pp);
+  CHECK(pp->kind == ValueKind::Expression);
+  CHECK(pp->has_expr);
+  CHECK(pp->value == Span{6, 11});
+  CHECK_FALSE(p.pf.find(p.pf.commands[0], 'S')->has_expr);
+}
+
+TEST_CASE("parser: unterminated strings and braces", "[parser]") {
+  CHECK(errors("M550 P\"abc") ==
+        std::vector<std::string>{"6: unterminated string: a quoted string must end with '\"' on the same line"});
+  CHECK(errors("G1 X{1 + 2") == std::vector<std::string>{"4: unterminated '{': the expression has no closing '}'"});
+  CHECK(errors("M550 P\"a\tb\"").size() == 1);
+  CHECK(errors("M291 P\"a\" S1").empty());
+}
+
+// §1.5 Meta commands.
+TEST_CASE("parser: meta commands", "[parser]") {
+  CHECK(one("if move.axes[0].homed") == "meta: if move.axes[0].homed");
+  CHECK(one("while iterations < 3") == "meta: while iterations < 3");
+  CHECK(one("var speed = 30") == "meta: var speed = 30");
+  CHECK(one("global parkX = {1, 2}") == "meta: global parkX = {1, 2}");
+  CHECK(one("set var.speed = var.speed + 1") == "meta: set var.speed = var.speed + 1");
+  CHECK(one("set global.pts[1] = 3") == "meta: set global.pts = 3");
+  CHECK(one("echo \"a\", 1") == "meta: echo \"a\", 1");
+  CHECK(one("echo >>\"f.txt\" \"a\"") == "meta: echo >>\"f.txt\" \"a\"");
+  // The keyword must be followed by the end, a blank, '{', '"' or '(': `echo>>` is a Bad command.
+  CHECK(one("echo>>\"f.txt\" \"a\"") == "bad");
+  CHECK(one("abort \"stop\"") == "meta: abort \"stop\"");
+  CHECK(one("skip") == "meta: skip");
+  CHECK(one("if(true)") == "meta: if (true)");
+  CHECK(one("N5 if true") == "metaN: if true");
+
+  Parsed p = parse_text("var speed = 30 ; c\n");
+  const Line& l = p.pf.lines[0];
+  CHECK(l.meta == MetaKind::Var);
+  CHECK(l.meta_name == Span{4, 9});
+  CHECK(l.meta_arg == Span{12, 14});
+  CHECK(l.stored_length == 15);
+}
+
+TEST_CASE("parser: meta command errors", "[parser]") {
+  CHECK(errors("else") == std::vector<std::string>{"0: 'else' did not follow 'if' at the same indentation"});
+  CHECK(errors("elif true") == std::vector<std::string>{"0: 'elif' did not follow 'if' at the same indentation"});
+  CHECK(errors("break") == std::vector<std::string>{"0: 'break' was not inside a loop"});
+  CHECK(errors("if true\n  continue") == std::vector<std::string>{"10: 'continue' was not inside a loop"});
+  CHECK(errors("if") == std::vector<std::string>{"0: expected a condition after 'if'"});
+  CHECK(errors("set x = 1") ==
+        std::vector<std::string>{"4: expected a global or local variable after 'set' ('var.name' or 'global.name')"});
+  CHECK(errors("var 1x = 1") == std::vector<std::string>{"4: expected a new variable name after 'var'"});
+  CHECK(errors("var x 1") == std::vector<std::string>{"6: expected '='"});
+  CHECK(errors("var x =") == std::vector<std::string>{"0: expected an expression after '='"});
+  CHECK(errors("else junk").size() == 2);  // unexpected characters, and no 'if'
+  CHECK(errors("if (a\n  M83") == std::vector<std::string>{"3: unclosed '(' in the 'if' condition"});
+  CHECK(errors("while a)\n  M83") == std::vector<std::string>{"7: unbalanced ')' in the 'while' condition"});
+  CHECK(errors("if true\n  M83\nelse\n  M82\n").empty());
+  CHECK(errors("while true\n  if true\n    break\n  continue\n").empty());
+}
+
+TEST_CASE("parser: blocks by indentation set the conditional and loop flags", "[parser]") {
+  CHECK(dump("if a\n  G1 X1\nelif b\n  G1 X2\nelse\n  G1 X3\nG1 X4\n") ==
+        "meta: if a\ncmd@2?: G1 X=1\nmeta: elif b\ncmd@2?: G1 X=2\nmeta: else\ncmd@2?: G1 X=3\ncmd: G1 X=4");
+  CHECK(dump("while a\n  G1 X1\n  if b\n    break\n  G1 X2\nG1 X3\n") ==
+        "meta: while a\ncmd@2~: G1 X=1\nmeta@2~: if b\nmeta@4?~: break\ncmd@2~: G1 X=2\ncmd: G1 X=3");
+  // Indentation without an opening if/while is a plain block: neither conditional nor in a loop.
+  CHECK(dump("M83\n  G1 X1\n") == "cmd: M83\ncmd@2: G1 X=1");
+  // Blank and comment lines do not end a block here (RRF109 judges column-0 comments by version).
+  CHECK(dump("if a\n  G1 X1\n\n  ; note\n  G1 X2\n") == "meta: if a\ncmd@2?: G1 X=1\nblank\nblank@2\ncmd@2?: G1 X=2");
+  // A deeper 'else' pairs with the inner 'if'.
+  CHECK(dump("if a\n  if b\n    M83\n  else\n    M82\n") ==
+        "meta: if a\nmeta@2?: if b\ncmd@4?: M83\nmeta@2?: else\ncmd@4?: M82");
+  CHECK(errors("if a\n  if b\n    M83\nelse\n  M82\n").empty());
+  CHECK(errors("if a\n  M83\n  else\n    M82\n").size() == 1);
+}
+
+// §1.1 Stored line length.
+TEST_CASE("parser: stored line length", "[parser]") {
+  auto stored = [](std::string text, ParseOptions o = {}) { return parse_text(std::move(text), o).pf.lines[0].stored_length; };
+  CHECK(stored("G1 X10") == 6);
+  CHECK(stored("    G1 X10") == 6);         // indentation is not stored
+  CHECK(stored("\tG1 X10 ; comment") == 7);  // the blank before ';' is stored, the comment is not
+  CHECK(stored("N100 G1 X10*99") == 6);      // neither the line number nor the checksum
+  CHECK(stored("M117 \"a;b\"") == 10);       // quoted text is stored
+  CHECK(stored("G1 X{1 + 2}") == 11);
+  CHECK(stored("G1 X5 (slow) Y6", ParseOptions{.cnc_mode = true}) == 9);
+  CHECK(stored("G1 X5 (slow) Y6") == 15);
+}
