@@ -45,10 +45,17 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
     auto disk = reader.disk_path(f.sd_path());
     if (!disk) return true;
     const fs::path abs = fs::absolute(*disk, ec).lexically_normal();
-    return !settings.excluded(abs) && !gitignore.ignored(abs);
+    return !settings.excluded(abs) && !(co.plan.respect_gitignore && gitignore.ignored(abs));
   };
 
   MachineResult r = lint_machine(sm, reader, eff.lint);
+  if (job.report_all && co.plan.respect_gitignore) {
+    // One `git check-ignore` for the whole card rather than one per file.
+    std::vector<fs::path> files;
+    for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+      if (auto disk = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(fs::absolute(*disk, ec).lexically_normal());
+    gitignore.prefetch(files);
+  }
   for (const LoadProblem& p : r.machine->problems()) {
     warning(fmt::format("{}: {}", p.display, p.message));
     if (job.only.count(to_lower(p.sd_path)) || !job.card) t.io_error = true;

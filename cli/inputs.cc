@@ -58,8 +58,8 @@ std::optional<CardLocation> sd_root_above(fs::path dir) {
 
 // The SD card a file belongs to. A real SD root above it comes first, so folders inside sys/ that hold their
 // own config.g (modules, tool-changer sub-folders) stay part of their card. Else the parent of a sys/, macros/
-// or filaments/ folder above it (a card without config.g), else a folder holding config.g (a sys folder under
-// another name).
+// or filaments/ folder above it (a card without config.g), else the file's own folder when it holds config.g
+// (a sys folder under another name).
 std::optional<CardLocation> card_for(const fs::path& file) {
   std::error_code ec;
   const fs::path start = fs::absolute(file, ec).parent_path();
@@ -73,7 +73,9 @@ std::optional<CardLocation> card_for(const fs::path& file) {
       return CardLocation{root, child_ci(root, "sys").value_or(root / "sys")};
     }
   }
-  return card_containing(file);
+  // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
+  if (holds_config(start)) return CardLocation{start.parent_path(), start};
+  return std::nullopt;
 }
 
 // Is `sd` a path the machine loads (under /sys, /macros or /filaments)?

@@ -74,9 +74,9 @@ int main(int argc, char** argv) {
     sub->add_option("--firmware", cli.firmware, "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
     sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
     sub->add_option("--select", cli.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
-        ->delimiter(',');
-    sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")->delimiter(',');
-    sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")->delimiter(',');
+        ->delimiter(',')->allow_extra_args(false);
+    sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")->delimiter(',')->allow_extra_args(false);
+    sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")->delimiter(',')->allow_extra_args(false);
     sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
     sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml");
     sub->add_flag("--isolated", cli.isolated, "Ignore every config file");

@@ -59,9 +59,10 @@ std::optional<Directive> parse_comment(const ParsedFile& pf, const Line& line) {
     else if (kw == "enable") d.kind = DirectiveKind::RangeEnd;
     else {
       d.bad_keyword = true;
-      d.problem = fmt::format("unknown suppression directive '{}': use disable, disable-next-line, disable-file "
-                              "or enable",
-                              text.substr(kw_begin, p - kw_begin));
+      d.problem = kw.empty() ? std::string("empty suppression directive: write e.g. '; rrflint: disable=RRF101'")
+                             : fmt::format("unknown suppression directive '{}': use disable, disable-next-line, "
+                                           "disable-file or enable",
+                                           text.substr(kw_begin, p - kw_begin));
       return d;
     }
     while (p < end && blank(text[p])) ++p;
@@ -448,8 +449,9 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const std::map<uint32_
     const Span ls = f.line_span(line0);
     // A line with a parse error (an unterminated string or `{`) may swallow an appended `;`: put the directive
     // on a line of its own above it instead, with the same indentation (so it stays inside its block).
-    const bool broken = std::any_of(pf.errors.begin(), pf.errors.end(), [&](const ParseError& e) {
-      return e.span.begin < f.size() && f.line_of(e.span.begin) == line0;
+    // (`ln`: clang 14 cannot capture a structured binding.)
+    const bool broken = std::any_of(pf.errors.begin(), pf.errors.end(), [&, ln = line0](const ParseError& e) {
+      return e.span.begin < f.size() && f.line_of(e.span.begin) == ln;
     });
     if (broken) {
       uint32_t ind = ls.begin;

@@ -19,7 +19,10 @@ inline std::string_view word(const ParsedFile& pf, const Command& c) { return pf
 /// Is `p` unquoted text that runs to the end of the line (`M117 Hello`, `M550 PName`, `M98 Pfile.g`)? RRF copies
 /// such text as it is: quotes, apostrophes and parentheses in it mean nothing.
 inline bool is_raw_text(const Command& c, const Param& p) {
-  return p.kind == ValueKind::Text && (p.letter == 0 || takes_rest_of_line(c.letter, c.number));
+  if (p.kind != ValueKind::Text || !takes_rest_of_line(c.letter, c.number)) return false;
+  const bool unlettered = c.number == 23 || c.number == 28 || c.number == 30 || c.number == 32 || c.number == 36 ||
+                          c.number == 117;
+  return unlettered ? p.letter == 0 : p.letter == 'P';
 }
 
 /// `s`, cut to `n` characters with "…" for a message.

@@ -69,9 +69,10 @@ void check(const FileContext& cx, Sink& out) {
       if (written == '\'') {
         if (highest == 0 || p->letter <= highest) continue;
         out.report(kMeta, cx.at(p->span),
-                   fmt::format("RRF {}{} knows lowercase axes up to ''{}' only: ''{}' is ignored and no axis is "
-                               "created",
-                               cx.target.version.str(), board_phrase(cx.target), highest, p->letter));
+                   fmt::format("lowercase axis '{} is beyond '{}, the highest RRF {}{} knows: {} is ignored and "
+                               "creates no axis",
+                               p->letter, highest, cx.target.version.str(), board_phrase(cx.target),
+                               pf.text(p->span)));
         continue;
       }
       if (!lex::is_lower(written) || !upper_seen || kTakenAsUpper.find(written) != std::string_view::npos) continue;
@@ -79,19 +80,19 @@ void check(const FileContext& cx, Sink& out) {
       const std::string meant = "'" + as_written;
       std::string support;
       if (highest == 0)
-        support = fmt::format(" (lowercase axes need RRF 3.3 or later)");
+        support = ", but lowercase axes need RRF 3.3 or later";
       else if (written > highest)
-        support = fmt::format(" (RRF {}{} knows lowercase axes up to ''{}' only)", cx.target.version.str(),
+        support = fmt::format(", but RRF {}{} knows lowercase axes up to '{} only", cx.target.version.str(),
                               board_phrase(cx.target), highest);
       if (kUpperAxes.find(written) != std::string_view::npos)
         out.report(kMeta, cx.at(p->span),
                    fmt::format("'{}' sets axis '{}': without an apostrophe RRF reads the letter as upper case; "
-                               "write '{}' for the lowercase axis '{}'{}",
-                               as_written, p->letter, meant, written, support));
+                               "the lowercase axis is written {}{}",
+                               as_written, p->letter, meant, support));
       else
         out.report(kMeta, cx.at(p->span),
-                   fmt::format("'{}' is ignored: '{}' is not an M584 axis letter, and a lowercase axis needs an "
-                               "apostrophe ('{}'){}",
+                   fmt::format("'{}' is ignored: '{}' is not an M584 axis letter; a lowercase axis is written "
+                               "with an apostrophe, {}{}",
                                as_written, p->letter, meant, support));
     }
   }

@@ -84,7 +84,7 @@ void check(const FileContext& cx, Sink& out) {
         groups.push_back(Span{k, e < line.code.end ? e + 1 : line.code.end});
         return true;
       });
-      for (const Span g : groups) {
+      for (const Span& g : groups) {
         Report r = out.report(kMeta, cx.at(g),
                               fmt::format("'{}' is not a comment outside CNC mode: standalone RRF reads its letters "
                                           "as parameters (SBC mode drops it); use ';' for a comment",

@@ -21,7 +21,9 @@ name of `M98 P` from RRF 3.5. It reports a value that does not start with `"` (o
 after the letter, including a blank between the letter and the quote (`P "xstop"`).
 
 Numbers given as pin names (`C3`) are reported only for `M950` and `M308`, which exist only in RRF 3: in
-RRF 2 `M558 C3` and `M591 C3` were endstop numbers.
+RRF 2 `M558 C3` and `M591 C3` were endstop numbers. An unquoted `M98` file name is reported when the target is
+given (`--firmware`) as 3.5 or later, or when the files show 3.5 features; an inferred target alone is not
+enough, since the unquoted name itself suggests a config written for 3.4 or earlier.
 
 ## Why is this bad?
 RRF answers `expected a string expression` and rejects the command: the pin, sensor, endstop or tool is not
@@ -73,7 +75,7 @@ Version needs_quotes_from(int number) { return number == 98 ? Version(3, 5, 0, 2
 void check_param(const FileContext& cx, const Command& c, const Param& p, const StringParam& sp, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  if (p.kind == ValueKind::String || p.kind == ValueKind::Expression || p.letter == 0) return;
+  if (p.letter == 0) return;
   const uint32_t after = p.span.begin + 1;  // right after the letter
   // The line's code, not the command: RRF would also end the command at the 'm' of an unquoted "thermistor".
   const uint32_t end = pf.line_of(c).code.end;
@@ -82,15 +84,15 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   uint32_t b = after;
   while (b < end && lex::is_blank(t[b])) ++b;
   if (b >= end) return;
-  if (t[b] == '{') return;
-  if (t[b] == '"') {
+  if (t[b] == '"' || t[b] == '{') {
     if (b == after) return;
     Fix fix{.title = fmt::format("remove the blank after '{}'", letter), .applicability = Applicability::Safe};
     fix.edits.push_back(Edit{cx.at(Span{after, b}), ""});
     out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
-               fmt::format("blank between '{}' and the quoted {} in '{}': RRF looks for the quote right after "
-                           "the letter and fails with 'expected a string expression'",
-                           letter, sp.what, lex::word(pf, c)))
+               fmt::format("blank between '{}' and the {} {} in '{}': RRF looks for the {} right after the letter "
+                           "and fails with 'expected a string expression'",
+                           letter, t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
+                           t[b] == '"' ? "quote" : "'{'"))
         .fix(std::move(fix));
     return;
   }
@@ -117,12 +119,23 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
       .fix(std::move(fix));
 }
 
+// Is the target certainly one that needs quotes for this command? An unquoted M98 file name is itself a sign of
+// a config written for 3.4 or earlier, so an inferred target needs evidence (stated or a floor) of 3.5 or later.
+bool needs_quotes(const Target& target, int number) {
+  const Version from = needs_quotes_from(number);
+  if (target.version < from) return false;
+  if (number != 98 || target.version_given) return true;
+  for (const Evidence& e : target.evidence)
+    if (e.kind != Evidence::Kind::Ceiling && e.version >= from) return true;
+  return false;
+}
+
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   for (const Command& c : pf.commands) {
     if (c.letter != 'M' || c.fraction >= 0) continue;
     for (const StringParam& sp : kStringParams) {
-      if (sp.number != c.number || cx.target.version < needs_quotes_from(sp.number)) continue;
+      if (sp.number != c.number || !needs_quotes(cx.target, sp.number)) continue;
       // RRF reads the first occurrence of the letter (Seen()).
       if (const Param* p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, out);
     }

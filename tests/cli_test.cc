@@ -185,6 +185,11 @@ TEST_CASE("cli: exit codes and --exit-zero, --fail-on", "[cli]") {
   CHECK(run_rrflint(t.root(), "check missing-folder").code == 2);
   CHECK(run_rrflint(t.root(), "check p --select no-such-rule").code == 2);
   CHECK(run_rrflint(t.root(), "check p --format yaml").code == 2);
+  // A rule list before the paths takes one value (comma-separated), so the path stays a path.
+  auto o = run_rrflint(t.root(), "check --select RRF101,RRF900 --ignore RRF900 p --format concise");
+  CHECK(o.code == 1);
+  CHECK(lines_of(o.out).size() == 1);
+  CHECK(contains(o.out, "[RRF101 unknown-command]"));
 }
 
 TEST_CASE("cli: --fix applies safe fixes until stable, keeps line endings and permissions", "[cli][fix]") {

@@ -189,6 +189,8 @@ CaseOptions read_options(const FixtureCase& c, const std::string& rule, std::vec
       o.lint.tool_changer = true;
     } else if (w == "--unsafe-fixes") {
       o.unsafe_fixes = true;
+    } else if (w == "--extend-select" && words >> arg) {
+      o.lint.extend_select.push_back(arg);  // another rule on as well (RRF900 needs a rule to suppress)
     } else if (w == "--firmware" && words >> arg) {
       if (auto v = Version::parse(arg)) o.lint.firmware = *v;
       else errors.push_back(fmt::format("{}:1: bad --firmware '{}'", rel(config->disk), arg));

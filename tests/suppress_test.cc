@@ -125,7 +125,7 @@ TEST_CASE("disable-file anywhere covers the whole file, and only that file", "[s
   CHECK(r->found() == V{"/macros/m.g:1 RRF101"});
 }
 
-TEST_CASE("--no-inline-suppressions ignores every directive and reports nothing about them", "[suppress]") {
+TEST_CASE("no-inline-suppressions: ignores every directive and reports nothing about them", "[suppress]") {
   LintOptions o;
   o.inline_suppressions = false;
   auto r = lint("M9999 ; rrflint: disable=unknown-command\nG1 X0 ; rrflint: disable=nothing-like-this\n", o);
