@@ -74,15 +74,19 @@ void scan(const FileContext& cx, Span s, Sink& out) {
     }
     if (escapes.empty()) continue;
     const uint32_t close = k < s.end ? k + 1 : s.end;
-    const std::string_view literal = t.substr(open, close - open);
     Fix fix{.title = escapes.size() == 1 ? "double the apostrophe" : "double the apostrophes",
             .applicability = Applicability::Safe};
     for (uint32_t at : escapes) fix.edits.push_back(Edit{cx.at(Span{at, at}), "'"});
     const uint32_t first = escapes.front();
+    // Show the word around the apostrophe, as written and as RRF reads it.
+    uint32_t wb = first, we = first + 2;
+    while (wb > open + 1 && !lex::is_blank(t[wb - 1]) && t[wb - 1] != '"') --wb;
+    while (we < close && we < s.end && !lex::is_blank(t[we]) && t[we] != '"') ++we;
+    const std::string_view word = t.substr(wb, we - wb);
     out.report(kMeta, cx.at(Span{first, first + 2}),
-               fmt::format("apostrophe before '{}' in the string {}: RRF drops it and lower-cases the letter, "
-                           "so the text reads \"{}\" (write '''' for an apostrophe)",
-                           t[first + 1], lex::clip(literal), lex::clip(unquote(literal))))
+               fmt::format("apostrophe before '{}' in a quoted string: RRF drops it and lower-cases the letter, so "
+                           "\"{}\" reads as \"{}\" (write '''' for an apostrophe)",
+                           t[first + 1], lex::clip(word), lex::clip(unquote(fmt::format("\"{}\"", word)))))
         .fix(std::move(fix));
   }
 }

@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF116",
     .name = "duplicate-parameter",
     .severity = Severity::Warning,
+    .fix = FixAvailability::Sometimes,
     .summary = "A parameter letter given twice in one command; RRF ignores the second.",
     .docs = R"md(
 ## What it does
@@ -35,6 +36,10 @@ M584 X0:3 Y1 Z2
 M906 X800 Y1000 Z800
 ```
 
+## Fix safety
+When the repeat has exactly the same value as the first (`S150 S150`), the fix removes it. That is safe: RRF
+never read it. A repeat with a different value is not fixed, since only the author knows which one is meant.
+
 ## References
 - rrf-semantics §1.8 (StringParser.cpp `Seen()` returns the first match; DSF ParserAsync.cs keeps the first)
 )md",
@@ -53,7 +58,12 @@ void check(const FileContext& cx, Sink& out) {
       return false;
     });
     // A letter straight after another letter is part of an unquoted word (`Cout1` gives C, O, U, T1): RRF103.
-    auto in_word = [&](const Param& p) { return p.span.begin > 0 && lex::is_alpha(t[p.span.begin - 1]); };
+    // Likewise the x of a hex byte in raw text (`M540 P0x02:0x80`).
+    auto in_word = [&](const Param& p) {
+      if (p.span.begin == 0) return false;
+      const char before = t[p.span.begin - 1];
+      return lex::is_alpha(before) || (before == '0' && (p.letter == 'X' || p.letter == 'x'));
+    };
     auto usable = [&](const Param& p) {
       return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) && !in_word(p);
     };
@@ -63,10 +73,22 @@ void check(const FileContext& cx, Sink& out) {
       if (first == p || !usable(*first)) continue;
       // Report each later duplicate once: only against the first occurrence.
       const std::string name = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
-      out.report(kMeta, cx.at(p->span),
-                 fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
-                             lex::clip(pf.text(p->span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name))
-          .note(cx.at(first->span), fmt::format("the first '{}' is here", name));
+      const bool same = pf.text(p->value) == pf.text(first->value);
+      Report r = out.report(
+          kMeta, cx.at(p->span),
+          same ? fmt::format("'{}' repeats a parameter of '{}': RRF reads only the first '{}', so the repeat does "
+                             "nothing",
+                             lex::clip(pf.text(p->span)), lex::word(pf, c), name)
+               : fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
+                             lex::clip(pf.text(p->span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
+      r.note(cx.at(first->span), fmt::format("the first '{}' is here", name));
+      if (same) {  // removing an exact repeat changes nothing: a safe fix
+        uint32_t b = p->span.begin;
+        while (b > c.span.begin && lex::is_blank(t[b - 1])) --b;
+        r.fix(Fix{.title = fmt::format("remove the repeated '{}'", lex::clip(pf.text(p->span))),
+                  .applicability = Applicability::Safe,
+                  .edits = {Edit{cx.at(Span{b, p->span.end}), ""}}});
+      }
     }
   }
 }

@@ -18,7 +18,8 @@ constexpr RuleMeta kMeta{
 Checks the string parameters that RRF 3 reads with `GetQuotedString()`: pin names (`M950 C`, `M308 P`, `M574 P`,
 `M558 C`, `M591 C`), the sensor type and name of `M308` (`Y`, `A`), the tool name `M563 S`, and the macro file
 name of `M98 P` from RRF 3.5. It reports a value that does not start with `"` (or `{` for an expression) right
-after the letter, including a blank between the letter and the quote (`P "xstop"`).
+after the letter, including a blank between the letter and the quote (`P "xstop"`; for `M98` in every RRF 3
+version, since older ones take the blank and the quotes as part of the file name).
 
 Numbers given as pin names (`C3`) are reported only for `M950` and `M308`, which exist only in RRF 3: in
 RRF 2 `M558 C3` and `M591 C3` were endstop numbers. An unquoted `M98` file name is reported when the target is
@@ -72,7 +73,8 @@ constexpr StringParam kStringParams[] = {
 // M98 P uses GetQuotedString from 3.5.0-rc.1; the other parameters need quotes in every RRF 3.
 Version needs_quotes_from(int number) { return number == 98 ? Version(3, 5, 0, 2, 1) : Version(3, 0, 0, 0, 0); }
 
-void check_param(const FileContext& cx, const Command& c, const Param& p, const StringParam& sp, Sink& out) {
+void check_param(const FileContext& cx, const Command& c, const Param& p, const StringParam& sp, bool quotes_needed,
+                 Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   if (p.letter == 0) return;
@@ -89,13 +91,17 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
     Fix fix{.title = fmt::format("remove the blank after '{}'", letter), .applicability = Applicability::Safe};
     fix.edits.push_back(Edit{cx.at(Span{after, b}), ""});
     out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
-               fmt::format("blank between '{}' and the {} {} in '{}': RRF looks for the {} right after the letter "
-                           "and fails with 'expected a string expression'",
-                           letter, t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
-                           t[b] == '"' ? "quote" : "'{'"))
+               fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
+                           t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
+                           quotes_needed ? fmt::format("RRF looks for the {} right after the letter and fails with "
+                                                       "'expected a string expression'",
+                                                       t[b] == '"' ? "quote" : "'{'")
+                                         : std::string("RRF takes the blank and what follows as the file name, "
+                                                       "quotes included, and finds no such file")))
         .fix(std::move(fix));
     return;
   }
+  if (!quotes_needed) return;
   // Unquoted text: for M98 the rest of the command, otherwise up to the next blank.
   uint32_t e = b;
   if (sp.number == 98) e = end;
@@ -126,7 +132,7 @@ bool needs_quotes(const Target& target, int number) {
   if (target.version < from) return false;
   if (number != 98 || target.version_given) return true;
   for (const Evidence& e : target.evidence)
-    if (e.kind != Evidence::Kind::Ceiling && e.version >= from) return true;
+    if (e.kind != Evidence::Kind::Ceiling && e.version >= Version(3, 5, 0, 0, 0)) return true;
   return false;
 }
 
@@ -135,9 +141,12 @@ void check(const FileContext& cx, Sink& out) {
   for (const Command& c : pf.commands) {
     if (c.letter != 'M' || c.fraction >= 0) continue;
     for (const StringParam& sp : kStringParams) {
-      if (sp.number != c.number || !needs_quotes(cx.target, sp.number)) continue;
+      if (sp.number != c.number || cx.target.version < Version(3, 0, 0, 0, 0)) continue;
+      const bool quotes_needed = needs_quotes(cx.target, sp.number);
+      // A blank before the quote of an M98 file name breaks every version; other checks need the target.
+      if (!quotes_needed && sp.number != 98) continue;
       // RRF reads the first occurrence of the letter (Seen()).
-      if (const Param* p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, out);
+      if (const Param* p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, quotes_needed, out);
     }
   }
 }
