@@ -80,16 +80,12 @@ std::optional<Violation> first_violation(const ParsedFile& pf, const Command& c,
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2) return;
+  const Tool* t = tools::temperature_tool(cx);
+  if (!t) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (!tools::sets_tool_settings(pf, c, s)) return;
-  if (!pf.find(c, 'R') && !pf.find(c, 'S')) return;
-  bool known = false;
-  const int n = tools::addressed_tool(pf, c, s, known);
-  if (!known || n < 0) return;
-  const Tool* t = tools::certain_tool(s, n);
+  const int n = t->number;
   if (!t || !s.heaters_known) return;
   auto v = first_violation(pf, c, s, *t);
   if (!v) return;

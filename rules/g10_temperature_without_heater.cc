@@ -65,17 +65,12 @@ bool only_off_values(const ParsedFile& pf, const Command& c, bool& known) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2) return;
+  const Tool* tool = tools::temperature_tool(cx);
+  if (!tool) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
-  const MachineState& s = cx.state;
-  if (!tools::sets_tool_settings(pf, c, s)) return;
-  if (!pf.find(c, 'R') && !pf.find(c, 'S')) return;
-  bool known = false;
-  const int n = tools::addressed_tool(pf, c, s, known);
-  if (!known || n < 0) return;
-  const Tool* tool = tools::certain_tool(s, n);
-  if (!tool || !tools::real_heaters(*tool).empty() || tool->spindle) return;
+  const int n = tool->number;
+  if (!tools::real_heaters(*tool).empty() || tool->spindle) return;
   bool values_known = true;
   if (only_off_values(pf, c, values_known) || !values_known) return;
   out.report(kMeta, cx.at(c.span),

@@ -52,6 +52,20 @@ inline const Tool* certain_tool(const MachineState& s, int n) {
   return t && !t->maybe && t->heaters_known && !s.unknown_baseline ? t : nullptr;
 }
 
+/// The tool whose temperatures a G10/M568 at this node sets, when the command certainly runs, sets R or S,
+/// and names a tool that certainly exists; nullptr otherwise.
+inline const Tool* temperature_tool(const NodeContext& cx) {
+  if (!cx.is_command() || cx.runs < 2) return nullptr;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  if (!sets_tool_settings(pf, c, cx.state)) return nullptr;
+  if (!pf.find(c, 'R') && !pf.find(c, 'S')) return nullptr;
+  bool known = false;
+  const int n = addressed_tool(pf, c, cx.state, known);
+  if (!known || n < 0) return nullptr;
+  return certain_tool(cx.state, n);
+}
+
 /// Heater numbers of a tool, without the `-1` of `H-1`.
 inline std::vector<int> real_heaters(const Tool& t) {
   std::vector<int> out;
