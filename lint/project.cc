@@ -84,7 +84,9 @@ bool looks_binary(std::string_view bytes) {
     else if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f') ++ctrl;
   }
   if (nul == 0) return false;
-  return nul + ctrl > n / 64 || nul > 16;
+  // A stray NUL in a text file is a line end to RRF (and RRF100 reports it); many NULs or many other
+  // control characters mean a binary file.
+  return nul > 16 || (nul + ctrl) * 10 > n;
 }
 
 const FileUnit* Machine::load(std::string_view sd_path) {
