@@ -112,6 +112,7 @@ class GitIgnore {
 
  private:
   std::map<std::string, bool> cache_;
+  std::map<std::string, bool> dir_cache_;  // folder -> ignored (fallback matcher)
   std::map<std::string, std::vector<std::pair<std::string, bool>>> patterns_;  // folder -> (pattern, negated)
   bool fallback_ignored(const fs::path& abs);
 };

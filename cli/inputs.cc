@@ -1,6 +1,7 @@
 // Command-line paths -> jobs, one per machine. A folder is walked for SD roots (a folder whose sys/ holds
 // config.g, or a sys folder), lone .g files and extensionless macros under macros/; .gitignore and the config
 // file's `exclude` are honoured while walking, and for explicitly named files only with --force-exclude.
+#include <algorithm>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -49,11 +50,17 @@ bool holds_config(const fs::path& dir) {
 
 // The nearest folder at or above `dir` whose sys/ holds config.g: a real SD root.
 std::optional<CardLocation> sd_root_above(fs::path dir) {
+  // Memoised per folder: a repository walk asks this for every file, and files share their folders.
+  static std::map<std::string, std::optional<CardLocation>> memo;
   std::error_code ec;
   dir = fs::absolute(dir, ec).lexically_normal();
-  for (int i = 0; i < 16 && dir.has_filename(); ++i, dir = dir.parent_path())
-    if (auto sys = child_ci(dir, "sys"); sys && holds_config(*sys)) return CardLocation{dir, *sys};
-  return std::nullopt;
+  auto [hit, fresh] = memo.try_emplace(dir.string());
+  if (!fresh) return hit->second;
+  std::optional<CardLocation> result;
+  for (fs::path d = dir; !result && d.has_filename(); d = d.parent_path())
+    if (auto sys = child_ci(d, "sys"); sys && holds_config(*sys)) result = CardLocation{d, *sys};
+  hit->second = result;
+  return result;
 }
 
 // The SD card a file belongs to. A real SD root above it comes first, so folders inside sys/ that hold their
@@ -101,15 +108,23 @@ bool is_ancestor(const fs::path& a, const fs::path& b) {  // a is b or above it
 }  // namespace
 
 std::optional<fs::path> repo_root(const fs::path& start) {
+  static std::map<std::string, std::optional<fs::path>> memo;  // per folder: files share their folders
   std::error_code ec;
   fs::path dir = fs::absolute(start, ec).lexically_normal();
   if (!dir.has_filename() && dir != dir.root_path()) dir = dir.parent_path();
+  auto [hit, fresh] = memo.try_emplace(dir.string());
+  if (!fresh) return hit->second;
+  std::optional<fs::path> result;
   for (int guard = 0; guard < 256; ++guard) {
-    if (fs::exists(dir / ".git", ec)) return dir;
+    if (fs::exists(dir / ".git", ec)) {
+      result = dir;
+      break;
+    }
     if (dir == dir.root_path() || !dir.has_parent_path() || dir.parent_path() == dir) break;
     dir = dir.parent_path();
   }
-  return std::nullopt;
+  hit->second = result;
+  return result;
 }
 
 void GitIgnore::prefetch(const std::vector<fs::path>& files) {
@@ -212,9 +227,14 @@ bool GitIgnore::fallback_ignored(const fs::path& abs) {
     }
     return result.value_or(false);
   };
-  // A folder that is ignored hides everything below it.
-  for (size_t i = 1; i < dirs.size(); ++i)
-    if (verdict(dirs[i], true)) return true;
+  // The usual case: no .gitignore anywhere above the file.
+  if (std::all_of(dirs.begin(), dirs.end(), [&](const fs::path& d) { return load(d).empty(); })) return false;
+  // A folder that is ignored hides everything below it (folder verdicts are cached: many files share them).
+  for (size_t i = 1; i < dirs.size(); ++i) {
+    auto [it, fresh] = dir_cache_.try_emplace(dirs[i].string(), false);
+    if (fresh) it->second = verdict(dirs[i], true);
+    if (it->second) return true;
+  }
   return verdict(abs, false);
 }
 

@@ -50,6 +50,7 @@ bool has_array_literal(std::string_view e) {
 
 Version series_latest(Version v) {
   if (v.major < 3) return Version(2, 5, 1);
+  if (v.major > 3) return kLatestVersion;  // no such release yet: the newest known
   switch (v.minor) {
     case 0: return Version(3, 0, 0);
     case 1: return Version(3, 1, 1);
@@ -155,7 +156,7 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
       if (e.kind == Evidence::Kind::Floor && e.version > floor) floor = e.version, floor_ev = &e;
       if (e.kind == Evidence::Kind::Ceiling && e.version < ceiling) ceiling = e.version, ceil_ev = &e;
     }
-    if (floor > ceiling) {
+    if (floor > ceiling && ceil_ev) {  // (no ceil_ev: a floor above the newest known release, "version 4")
       t.version = series_latest(floor);
       t.reason = fmt::format("target RRF {}: {} although {}; the newer evidence wins", t.version.str(),
                              floor_ev->what, ceil_ev->what);

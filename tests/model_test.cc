@@ -314,6 +314,9 @@ TEST_CASE("infer: the version comes from the header, the syntax, or the newest r
   // A header consistent with the syntax wins over "newest".
   CHECK(target("; firmware version 3.4\nvar x = 1\n").version == Version(3, 4, 6));
   CHECK(target("; firmware version 3.4\nglobal a = {1, 2}\n").version == kLatestVersion);
+  // A header above the newest known release (found by the fuzzer: a null dereference) gives the newest.
+  CHECK(target("; firmware version 4\nM83\n").version == kLatestVersion);
+  CHECK(target("; firmware version 4\nM92 E420\n").version == kLatestVersion);
   // Evidence is collected from every file, not only config.g.
   auto macro = boot({{"/sys/config.g", "M83\n"}, {"/macros/m.g", "var v = {1, 2}\n"}}, std::nullopt);
   CHECK(macro->result.target.version == kLatestVersion);

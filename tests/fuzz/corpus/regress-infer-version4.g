@@ -1,0 +1,1 @@
+param.‡; CR only3G1ÁÎÏ; firmware version 4T‡C ;R onlM1ß™ly340 HC®ß™ly3G1G50 P0 R0y
