@@ -23,12 +23,14 @@ a command from another firmware (Marlin's `M851`), or a command newer than the f
 
 ## Example
 ```gcode
-M596 P0.2 S0    ; meant M569
+M420 S1         ; Marlin's "enable bed levelling"
+M900 K0.05      ; Marlin's linear advance
 ```
 
 ## Use instead
 ```gcode
-M569 P0.2 S0
+G29 S1          ; load the saved height map
+M572 D0 S0.05   ; pressure advance
 ```
 
 ## References
