@@ -65,13 +65,29 @@ fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
   return root_ / (d.starts_with("/") ? d.substr(1) : d);
 }
 
-std::optional<fs::path> DiskReader::locate(std::string_view sd_path) const {
+std::optional<fs::path> DiskReader::child(const fs::path& dir, const std::string& name) const {
+  auto [it, fresh] = listings_.try_emplace(dir.string());
+  if (fresh) {
+    std::error_code ec;
+    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec))
+      it->second.emplace(to_lower(d->path().filename().string()), d->path());
+  }
+  auto hit = it->second.find(to_lower(name));
+  if (hit == it->second.end()) return std::nullopt;
+  return hit->second;
+}
+
+std::optional<fs::path> DiskReader::locate(std::string_view sd_path) const { return locate_spelled(sd_path, nullptr); }
+
+std::optional<fs::path> DiskReader::locate_spelled(std::string_view sd_path, std::string* spelled) const {
   std::string p(sd_path);
   fs::path cur;
   std::string rest;
+  std::string out;
   if (to_lower(p).starts_with("/sys/")) {
     cur = sys_;
     rest = p.substr(5);
+    out = "/sys";
   } else {
     cur = root_;
     rest = p.starts_with("/") ? p.substr(1) : p;
@@ -81,13 +97,15 @@ std::optional<fs::path> DiskReader::locate(std::string_view sd_path) const {
     size_t slash = rest.find('/', start);
     std::string seg = rest.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
     if (!seg.empty()) {
-      auto next = find_ci(cur, seg);
+      auto next = child(cur, seg);
       if (!next) return std::nullopt;
       cur = *next;
+      out += "/" + cur.filename().string();
     }
     if (slash == std::string::npos) break;
     start = slash + 1;
   }
+  if (spelled) *spelled = out.empty() ? "/" : out;
   return cur;
 }
 
@@ -116,7 +134,8 @@ ReadResult DiskReader::read(std::string_view sd_path) {
     if (!where) r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
     return r;
   }
-  auto where = locate(sd_path);
+  std::string spelled;
+  auto where = locate_spelled(sd_path, &spelled);
   if (!where) return r;
   std::string err;
   auto bytes = read_file(*where, &err);
@@ -130,7 +149,7 @@ ReadResult DiskReader::read(std::string_view sd_path) {
   r.status = ReadResult::Status::Ok;
   r.bytes = std::move(*bytes);
   // The SD path with the real case of the file name.
-  r.sd_path = sd_path_of(*where).value_or(std::string(sd_path));
+  r.sd_path = spelled;
   return r;
 }
 

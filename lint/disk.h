@@ -27,6 +27,11 @@ class DiskReader : public FileReader {
 
  private:
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
+  // Case-insensitive child lookup, with each folder listed once (a card asks for many missing tool macros).
+  std::optional<std::filesystem::path> child(const std::filesystem::path& dir, const std::string& name) const;
+  // locate() that also returns the SD path spelled as the files on disk are.
+  std::optional<std::filesystem::path> locate_spelled(std::string_view sd_path, std::string* spelled) const;
+  mutable std::map<std::string, std::map<std::string, std::filesystem::path>> listings_;
   std::filesystem::path root_, sys_, base_;
   std::map<std::string, std::string> overlay_;
 };
