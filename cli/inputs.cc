@@ -40,14 +40,6 @@ std::optional<fs::path> child_ci(const fs::path& dir, const std::string& name) {
   return std::nullopt;
 }
 
-bool holds_config(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::is_regular_file(dir / "config.g", ec)) return true;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (to_lower(it->path().filename().string()) == "config.g" && it->is_regular_file(ec)) return true;
-  return false;
-}
-
 // The nearest folder at or above `dir` whose sys/ holds config.g: a real SD root.
 std::optional<CardLocation> sd_root_above(fs::path dir) {
   // Memoised per folder: a repository walk asks this for every file, and files share their folders.
@@ -58,7 +50,7 @@ std::optional<CardLocation> sd_root_above(fs::path dir) {
   if (!fresh) return hit->second;
   std::optional<CardLocation> result;
   for (fs::path d = dir; !result && d.has_filename(); d = d.parent_path())
-    if (auto sys = child_ci(d, "sys"); sys && holds_config(*sys)) result = CardLocation{d, *sys};
+    if (auto sys = child_ci(d, "sys"); sys && has_config(*sys)) result = CardLocation{d, *sys};
   hit->second = result;
   return result;
 }
@@ -81,7 +73,7 @@ std::optional<CardLocation> card_for(const fs::path& file) {
     }
   }
   // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
-  if (holds_config(start)) return CardLocation{start.parent_path(), start};
+  if (has_config(start)) return CardLocation{start.parent_path(), start};
   return std::nullopt;
 }
 

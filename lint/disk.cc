@@ -19,14 +19,14 @@ std::optional<fs::path> find_ci(const fs::path& dir, const std::string& name) {
   return std::nullopt;
 }
 
+}  // namespace
+
 bool has_config(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return false;
   auto c = find_ci(dir, "config.g");
   return c && fs::is_regular_file(*c, ec);
 }
-
-}  // namespace
 
 std::optional<std::string> read_file(const fs::path& p, std::string* error) {
   std::error_code ec;
@@ -185,17 +185,6 @@ std::optional<CardLocation> card_at(const fs::path& dir) {
     fs::path abs = fs::absolute(dir, ec);
     if (abs.filename().empty()) abs = abs.parent_path();
     return CardLocation{abs.parent_path(), abs};
-  }
-  return std::nullopt;
-}
-
-std::optional<CardLocation> card_containing(const fs::path& file) {
-  std::error_code ec;
-  fs::path dir = fs::absolute(file, ec).parent_path();
-  for (int i = 0; i < 6 && !dir.empty(); ++i) {
-    if (auto c = card_at(dir)) return c;
-    if (dir == dir.root_path()) break;
-    dir = dir.parent_path();
   }
   return std::nullopt;
 }

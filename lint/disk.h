@@ -45,7 +45,7 @@ struct CardLocation {
   std::filesystem::path sys_dir;  // the folder that plays /sys
 };
 std::optional<CardLocation> card_at(const std::filesystem::path& dir);
-/// Walks up from a file to the card that contains it.
-std::optional<CardLocation> card_containing(const std::filesystem::path& file);
+/// Does this folder hold a config.g (any case)?
+bool has_config(const std::filesystem::path& dir);
 
 }  // namespace rrflint
