@@ -151,8 +151,6 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
           if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
         }
       }
-    } else if (c.letter == 'T' && c.fraction < 0 && call_kind != CallKind::Entry) {
-      tool_change(u, c, id, m, depth);
     } else if (c.letter == 'T' && c.fraction < 0) {
       tool_change(u, c, id, m, depth);
     }
@@ -165,8 +163,6 @@ Graph Builder::build() {
   // Boot: config.g (fallback config.g.bak), then runonce.g.
   const FileUnit* config = m_.load(o_.sys_dir + "/config.g");
   if (!config) config = m_.load(o_.sys_dir + "/config.g.bak");
-  const size_t first_unit = m_.unit_count();
-  (void)first_unit;
   if (config) {
     Segment seg;
     seg.begin = 0;

@@ -527,7 +527,6 @@ void compute_blocks(ParsedFile& pf) {
   std::vector<Open> stack{{0, MetaKind::None, MetaKind::None}};
   MetaKind prev_meta = MetaKind::None;
   bool saw_tabs = false, saw_spaces = false;
-  const std::string_view t = pf.source->text();
   for (Line& line : pf.lines) {
     if (line.kind != LineKind::Commands && line.kind != LineKind::Meta && line.kind != LineKind::Bad) continue;
     while (stack.size() > 1 && line.indent < stack.back().indent) stack.pop_back();
@@ -556,7 +555,6 @@ void compute_blocks(ParsedFile& pf) {
     stack.back().last = line.meta;
     prev_meta = line.meta;
   }
-  (void)t;
   pf.mixed_indentation = saw_tabs && saw_spaces;
 }
 
