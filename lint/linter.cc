@@ -89,6 +89,44 @@ size_t apply_edits(std::string& text, std::vector<Edit> edits) {
   return applied;
 }
 
+namespace {
+
+// Which check_node rules a node wakes: by command letter and number, from the rules' `on` lists.
+class NodeDispatch {
+ public:
+  NodeDispatch(const std::vector<const Rule*>& rules, bool every) {
+    for (const Rule* r : rules) {
+      if (!r->check_node) continue;
+      if (every) {
+        every_.push_back(r);
+        continue;
+      }
+      Triggers t;
+      parse_triggers(r->on, t);  // a malformed list is a test failure (tests/rules_test.cc), not a crash
+      if (t.any_t) t_.push_back(r);
+      for (auto [letter, n] : t.codes) {
+        auto& table = letter == 'G' ? g_ : m_;
+        if (n >= static_cast<int>(table.size())) table.resize(static_cast<size_t>(n) + 1);
+        if (table[n].empty() || table[n].back() != r) table[n].push_back(r);
+      }
+    }
+  }
+  const std::vector<const Rule*>& rules_for(const Node& node, const Machine& m) const {
+    if (!every_.empty() || node.kind != NodeKind::Command) return every_;
+    const Command& c = m.unit(node.unit).parsed.commands[node.index];
+    if (c.letter == 'T') return t_;
+    const auto& table = c.letter == 'G' ? g_ : m_;
+    if (c.number < 0 || c.number >= static_cast<int>(table.size())) return none_;
+    return table[c.number];
+  }
+
+ private:
+  std::vector<std::vector<const Rule*>> g_, m_;
+  std::vector<const Rule*> t_, every_, none_;
+};
+
+}  // namespace
+
 MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options) {
   MachineResult res;
   res.machine = std::make_unique<Machine>(sources, reader);
@@ -125,9 +163,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
 
   // 5. The forward pass: boot, then every entry from the end-of-boot state.
   ModelBuilder mb(m, res.graph, res.target.version, res.target.board);
-  std::vector<const Rule*> node_rules;
-  for (const Rule* r : rules)
-    if (r->check_node) node_rules.push_back(r);
+  const NodeDispatch dispatch(rules, options.dispatch_every_node);
   MachineState boot_end = mb.initial_state();
   bool have_boot = false;
   for (const Segment& seg : res.graph.segments) {
@@ -135,10 +171,12 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
     if (!seg.boot && !have_boot) s.unknown_baseline = true;
     for (NodeId id = seg.begin; id < seg.end; ++id) {
       mb.decide(s, id);
-      const int runs = mb.runs(id);
-      if (runs > 0 && !node_rules.empty()) {
-        NodeContext nc{m, res.graph, res.target, options, s, id, runs};
-        for (const Rule* r : node_rules) r->check_node(nc, sink);
+      const auto& node_rules = dispatch.rules_for(res.graph.nodes[id], m);
+      if (!node_rules.empty()) {
+        if (const int runs = mb.runs(id); runs > 0) {
+          NodeContext nc{m, res.graph, res.target, options, s, id, runs};
+          for (const Rule* r : node_rules) r->check_node(nc, sink);
+        }
       }
       mb.step(s, id);
     }

@@ -31,6 +31,9 @@ struct LintOptions {
   bool inline_suppressions = true;  // honour `; rrflint: disable=…` comments (--no-inline-suppressions: false)
   /// Per-file ignores (config file): is rule `code` switched off for this file? Null: never.
   std::function<bool(const SourceFile&, std::string_view code)> ignored_in_file;
+  /// Tests only: call every check_node rule on every node, ignoring the rules' `on` lists. The fixture runner
+  /// lints each case both ways and requires the same findings, which proves the lists complete.
+  bool dispatch_every_node = false;
 };
 
 /// Which rules are on, after select/extend/ignore. Unknown names go to `errors`.

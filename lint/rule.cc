@@ -72,6 +72,33 @@ const Segment& NodeContext::segment() const {
   return graph.segments.front();
 }
 
+bool parse_triggers(std::string_view on, Triggers& out, std::string* bad) {
+  out = Triggers{};
+  while (!on.empty()) {
+    const size_t b = on.find_first_not_of(' ');
+    if (b == std::string_view::npos) break;
+    on.remove_prefix(b);
+    const std::string_view tok = on.substr(0, on.find(' '));
+    on.remove_prefix(tok.size());
+    if (tok == "T") {
+      out.any_t = true;
+      continue;
+    }
+    int n = 0;
+    bool ok = tok.size() >= 2 && tok.size() <= 5 && (tok[0] == 'G' || tok[0] == 'M');
+    for (size_t i = 1; ok && i < tok.size(); ++i) {
+      ok = tok[i] >= '0' && tok[i] <= '9';
+      n = n * 10 + (tok[i] - '0');
+    }
+    if (!ok) {
+      if (bad) *bad = std::string(tok);
+      return false;
+    }
+    out.codes.emplace_back(tok[0], n);
+  }
+  return true;
+}
+
 bool NodeContext::in_boot() const { return !graph.segments.empty() && segment().boot; }
 
 }  // namespace rrflint

@@ -114,7 +114,19 @@ struct Rule {
   void (*check_file)(const FileContext&, Sink&) = nullptr;
   void (*check_node)(const NodeContext&, Sink&) = nullptr;
   void (*check_end)(const EndContext&, Sink&) = nullptr;
+  /// The commands check_node is called for, blank-separated: codes such as "G10 M563" (any fraction: "M569"
+  /// takes M569.1 too) and "T" for every T command. The linter calls check_node for those nodes only, so the
+  /// list must name every command the check can report on (the fixture runner checks it against a run that
+  /// calls every rule on every node).
+  std::string_view on;
 };
+
+/// A rule's `on` list, parsed. False (with the bad token in `bad`) on a malformed list.
+struct Triggers {
+  std::vector<std::pair<char, int>> codes;  // ('G', 10), ('M', 563)
+  bool any_t = false;
+};
+bool parse_triggers(std::string_view on, Triggers& out, std::string* bad = nullptr);
 
 /// Every rule, sorted by code. Defined from rules/rules.def.
 const std::vector<const Rule*>& all_rules();

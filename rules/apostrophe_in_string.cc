@@ -93,7 +93,9 @@ void scan(const FileContext& cx, Span s, Sink& out) {
 
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
+  const std::string_view t = pf.source->text();
   for (const Line& line : pf.lines) {
+    if (!lex::contains(t, line.code, '"')) continue;  // no string on this line
     if (line.kind == LineKind::Meta) {
       scan(cx, line.code, out);
       continue;

@@ -119,6 +119,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule axis_before_creation{.meta = kMeta, .check_node = check};
+extern const Rule axis_before_creation{.meta = kMeta, .check_node = check, .on = "G31 M92 M201 M203 M205 M206 M208 M350 M566 M574 M906 M913 M915 M917"};
 
 }  // namespace rrflint

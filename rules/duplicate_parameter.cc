@@ -50,9 +50,19 @@ void check(const FileContext& cx, Sink& out) {
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
     if (c.param_count < 2) continue;
+    // Most commands repeat no letter: a bit per letter tells at once.
+    uint64_t seen = 0;
+    bool repeat = false;
+    for (const Param* p = pf.param_begin(c); p != pf.param_end(c) && !repeat; ++p) {
+      if (p->letter == 0) continue;
+      const uint64_t bit = uint64_t{1} << (p->letter >= 'a' ? p->letter - 'a' + 26 : p->letter - 'A');
+      repeat = (seen & bit) != 0;
+      seen |= bit;
+    }
+    if (!repeat) continue;
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
     uint32_t stop = c.span.end;
-    lex::for_each_plain(t, c.span, [&](uint32_t k) {
+    if (lex::contains(t, c.span, '(')) lex::for_each_plain(t, c.span, [&](uint32_t k) {
       if (t[k] != '(') return true;
       stop = k;
       return false;

@@ -181,6 +181,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule extruder_before_creation{.meta = kMeta, .check_node = check};
+extern const Rule extruder_before_creation{.meta = kMeta, .check_node = check, .on = "M563 M92 M201 M203 M205 M350 M566 M906 M913 M917 M572 M591 M221"};
 
 }  // namespace rrflint

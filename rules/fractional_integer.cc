@@ -60,10 +60,14 @@ constexpr IntParam kIntParams[] = {
 };
 
 std::string_view int_params(const Command& c) {
-  if (c.fraction >= 0) return {};
-  for (const IntParam& ip : kIntParams)
-    if (ip.letter == c.letter && ip.number == c.number) return ip.params;
-  return {};
+  if (c.fraction >= 0 || c.number < 0 || c.number >= 1024 || (c.letter != 'G' && c.letter != 'M')) return {};
+  // Indexed once by letter and number: every command of every file asks.
+  static const std::vector<std::string_view> index = [] {
+    std::vector<std::string_view> v(2 * 1024);
+    for (const IntParam& ip : kIntParams) v[(ip.letter == 'M') * 1024 + ip.number] = ip.params;
+    return v;
+  }();
+  return index[(c.letter == 'M') * 1024 + c.number];
 }
 
 // The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers.

@@ -106,6 +106,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_axis_before_creation{.meta = kMeta, .check_node = check};
+extern const Rule g10_axis_before_creation{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

@@ -84,6 +84,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_becomes_retraction{.meta = kMeta, .check_node = check};
+extern const Rule g10_becomes_retraction{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

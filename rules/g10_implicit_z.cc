@@ -63,6 +63,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_implicit_z{.meta = kMeta, .check_node = check};
+extern const Rule g10_implicit_z{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

@@ -64,6 +64,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_l20_at_boot{.meta = kMeta, .check_node = check};
+extern const Rule g10_l20_at_boot{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

@@ -102,6 +102,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_missing_z{.meta = kMeta, .check_node = check};
+extern const Rule g10_missing_z{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

@@ -78,6 +78,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_no_tool_selected{.meta = kMeta, .check_node = check};
+extern const Rule g10_no_tool_selected{.meta = kMeta, .check_node = check, .on = "G10 M568"};
 
 }  // namespace rrflint

@@ -103,6 +103,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_offset_on_unmapped_axis{.meta = kMeta, .check_node = check};
+extern const Rule g10_offset_on_unmapped_axis{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

@@ -110,6 +110,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_temperature_out_of_range{.meta = kMeta, .check_node = check};
+extern const Rule g10_temperature_out_of_range{.meta = kMeta, .check_node = check, .on = "G10 M568"};
 
 }  // namespace rrflint

@@ -100,6 +100,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule g10_tool_before_definition{.meta = kMeta, .check_node = check};
+extern const Rule g10_tool_before_definition{.meta = kMeta, .check_node = check, .on = "G10"};
 
 }  // namespace rrflint

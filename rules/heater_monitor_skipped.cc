@@ -121,6 +121,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule heater_monitor_skipped{.meta = kMeta, .check_node = check};
+extern const Rule heater_monitor_skipped{.meta = kMeta, .check_node = check, .on = "M563 M140 M141"};
 
 }  // namespace rrflint

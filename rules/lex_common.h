@@ -25,6 +25,9 @@ inline bool is_raw_text(const Command& c, const Param& p) {
   return unlettered ? p.letter == 0 : p.letter == 'P';
 }
 
+/// Does span `s` of `t` hold the byte `c`?
+inline bool contains(std::string_view t, Span s, char c) { return t.substr(s.begin, s.size()).find(c) != std::string_view::npos; }
+
 /// `s`, cut to `n` characters with "…" for a message.
 inline std::string clip(std::string_view s, size_t n = 40) {
   if (s.size() <= n) return std::string(s);

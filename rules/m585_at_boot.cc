@@ -80,6 +80,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule m585_at_boot{.meta = kMeta, .check_node = check};
+extern const Rule m585_at_boot{.meta = kMeta, .check_node = check, .on = "M585"};
 
 }  // namespace rrflint

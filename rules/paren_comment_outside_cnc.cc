@@ -74,7 +74,7 @@ void check(const FileContext& cx, Sink& out) {
   }
   bool cnc = false;
   for (const Line& line : pf.lines) {
-    if (line.kind == LineKind::Commands && !cnc) {
+    if (line.kind == LineKind::Commands && !cnc && lex::contains(t, line.code, '(')) {
       std::vector<Span> groups;
       lex::for_each_plain(t, line.code, [&](uint32_t k) {
         if (t[k] != '(' || in_raw_text(pf, line, k)) return true;

@@ -129,6 +129,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule tool_map_before_axis{.meta = kMeta, .check_node = check};
+extern const Rule tool_map_before_axis{.meta = kMeta, .check_node = check, .on = "M563"};
 
 }  // namespace rrflint

@@ -81,6 +81,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule tool_maps_overlap{.meta = kMeta, .check_node = check};
+extern const Rule tool_maps_overlap{.meta = kMeta, .check_node = check, .on = "M563"};
 
 }  // namespace rrflint

@@ -150,6 +150,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule tool_redefined{.meta = kMeta, .check_node = check};
+extern const Rule tool_redefined{.meta = kMeta, .check_node = check, .on = "M563"};
 
 }  // namespace rrflint

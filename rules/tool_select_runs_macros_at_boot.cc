@@ -191,6 +191,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule tool_select_runs_macros_at_boot{.meta = kMeta, .check_node = check};
+extern const Rule tool_select_runs_macros_at_boot{.meta = kMeta, .check_node = check, .on = "T"};
 
 }  // namespace rrflint

@@ -110,6 +110,6 @@ void check(const NodeContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule tool_used_before_definition{.meta = kMeta, .check_node = check};
+extern const Rule tool_used_before_definition{.meta = kMeta, .check_node = check, .on = "T M207 M567 M568"};
 
 }  // namespace rrflint

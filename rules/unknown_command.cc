@@ -58,11 +58,25 @@ int version_index(Version v) {
   return 1 + v.minor;
 }
 
+// The versions (bit per version index) that implement each code, looked up per command rather than searched.
+struct CodeIndex {
+  static constexpr int kNumbers = 1024, kFractions = 11;  // fraction -1..9
+  std::vector<uint8_t> versions = std::vector<uint8_t>(2 * kNumbers * kFractions, 0);
+  CodeIndex() {
+    for (const CodeRange& c : kCodes)
+      if (c.number >= 0 && c.number < kNumbers && c.fraction >= -1 && c.fraction <= 9)
+        for (int v = c.first; v <= c.last; ++v) versions[slot(c.letter, c.number, c.fraction)] |= uint8_t(1u << v);
+  }
+  static size_t slot(char letter, int number, int fraction) {
+    return (static_cast<size_t>(letter == 'M') * kNumbers + static_cast<size_t>(number)) * kFractions +
+           static_cast<size_t>(fraction + 1);
+  }
+};
+
 bool implemented(char letter, int number, int fraction, int vi) {
-  for (const CodeRange& c : kCodes)
-    if (c.letter == letter && c.number == number && c.fraction == fraction && vi >= c.first && vi <= c.last)
-      return true;
-  return false;
+  static const CodeIndex index;
+  if (number < 0 || number >= CodeIndex::kNumbers || fraction < -1 || fraction > 9) return false;
+  return (index.versions[CodeIndex::slot(letter, number, fraction)] >> vi) & 1u;
 }
 
 void check(const FileContext& cx, Sink& out) {

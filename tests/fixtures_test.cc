@@ -406,6 +406,22 @@ void run_case(FixtureCase& c) {
   std::map<std::string, std::string> card;
   for (const CardFile& f : c.files) card[f.sd_path] = f.blanked;
   auto run = lint_card(card, opts.lint);
+  {
+    // The rule's `on` list must name every command it reports on: calling it on every node changes nothing.
+    LintOptions every = opts.lint;
+    every.dispatch_every_node = true;
+    auto all_nodes = lint_card(card, every);
+    std::vector<std::string> a, b;
+    for (const Finding& f : run->findings) a.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+    for (const Finding& f : all_nodes->findings)
+      b.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+    for (const std::string& x : b)
+      if (std::find(a.begin(), a.end(), x) == a.end())
+        FAIL_CHECK(c.name << ": found only when every node is checked (add the command to the rule's `on`): " << x);
+    for (const std::string& x : a)
+      if (std::find(b.begin(), b.end(), x) == b.end())
+        FAIL_CHECK(c.name << ": found only with the rule's `on` list: " << x);
+  }
 
   if (c.rule != "syntax-error") {
     const Machine& m = *run->result.machine;
@@ -458,6 +474,27 @@ TEST_CASE("fixtures match the findings of their rule", "[fixtures]") {
       DYNAMIC_SECTION(c.name) { run_case(c); }
     }
   }
+}
+
+TEST_CASE("every node rule has a well-formed `on` list", "[fixtures]") {
+  for (const Rule* r : all_rules()) {
+    Triggers t;
+    std::string bad;
+    const bool ok = parse_triggers(r->on, t, &bad);
+    INFO(r->meta.code << " " << r->meta.name);
+    CHECK(ok);
+    if (!ok) INFO("bad token: " << bad);
+    // A node rule that names no command would never run; `on` without check_node means nothing.
+    CHECK((r->check_node != nullptr) == (!t.codes.empty() || t.any_t));
+  }
+  Triggers t;
+  CHECK(parse_triggers(" G10  M563 T ", t));
+  CHECK(t.codes == std::vector<std::pair<char, int>>{{'G', 10}, {'M', 563}});
+  CHECK(t.any_t);
+  std::string bad;
+  CHECK_FALSE(parse_triggers("G10 X5", t, &bad));
+  CHECK(bad == "X5");
+  CHECK_FALSE(parse_triggers("M", t));
 }
 
 TEST_CASE("every rule has fixtures with two positive and two negative cases", "[fixtures]") {
