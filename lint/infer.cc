@@ -134,7 +134,7 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
           if (d.known() && !d.value.empty() && d.value.front() >= 0)
             extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), "tools use extruders but no M584 E creates any (RRF 3.3+ has no default extruder)", loc};
         } else if (c.number == 92 || c.number == 906 || c.number == 350 || c.number == 203 || c.number == 201 || c.number == 566) {
-          if (const Param* p = pf.find(c, 'E'); p && (p->kind == ValueKind::Number || p->kind == ValueKind::List))
+          if (ParamRef p = pf.find(c, 'E'); p && (p->kind == ValueKind::Number || p->kind == ValueKind::List))
             extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), fmt::format("M{} sets E values but no M584 E creates an extruder (RRF 3.3+ has no default extruder)", c.number), loc};
         }
       }

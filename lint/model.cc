@@ -50,7 +50,7 @@ void do_m584(Cx& x) {
   for (char L : kAxisOrder) {
     if (L >= 'a' && (hi == 0 || L > hi)) break;
     if (L < 'a' && s.firmware < Version(3, 0, 0, 0, 0) && std::string_view("XYZUVWABC").find(L) == std::string_view::npos) continue;
-    const Param* p = x.pf.find(x.c, L);
+    ParamRef p = x.pf.find(x.c, L);
     if (!p) continue;
     auto drivers = get_driver_list(x.pf, x.c, L);
     int idx = s.axis_index(L);
@@ -102,7 +102,7 @@ void do_m584(Cx& x) {
 AxisMap read_map(Cx& x, char letter, int default_axis, bool& bad, bool& present) {
   AxisMap m;
   m.bits = 1u << default_axis;
-  const Param* p = x.pf.find(x.c, letter);
+  ParamRef p = x.pf.find(x.c, letter);
   if (!p) return m;
   present = true;
   m.origin = x.id;

@@ -23,109 +23,366 @@ constexpr MetaWord kMetaWords[] = {
     {"global", MetaKind::Global}, {"set", MetaKind::Set},     {"echo", MetaKind::Echo},     {"skip", MetaKind::Skip},
 };
 
-class LineParser {
- public:
-  LineParser(ParsedFile& out, const ParseOptions& opts) : out_(out), t_(out.source->text()), cnc_(opts.cnc_mode) {}
+// Commands whose one string argument needs no letter and runs to the end of the line (M117 text, M23 file).
+bool unlettered_string(const Command& c) {
+  return c.letter == 'M' && c.fraction < 0 &&
+         (c.number == 117 || c.number == 23 || c.number == 28 || c.number == 30 || c.number == 32 || c.number == 36);
+}
 
-  void parse_logical_line(uint32_t b, uint32_t e, bool after_nul);
+enum LineFlag : uint8_t {
+  kIndentTabs = 1,
+  kIndentSpaces = 2,
+  kLineNumber = 4,
+  kChecksum = 8,
+  kConditional = 16,
+  kInLoop = 32,
+  kAfterNul = 64,
+  kCutByDel = 128,  // a 0x7F byte ended the line early
+};
 
- private:
-  void error(uint32_t b, uint32_t e, std::string msg) { out_.errors.push_back({Span{b, e}, std::move(msg)}); }
+enum CommandBits : uint8_t {
+  kLetterMask = 3,  // 0 G, 1 M, 2 T
+  kNumberExpr = 4,
+  kHasNumber = 8,
+  kCnc = 16,
+  kAnyExponent = 32,
+  kAnyBlankColon = 64,
+};
+
+}  // namespace
+
+// The lexer of values and parameters. The parse pass runs it with `out` set (errors are recorded); ParamRange
+// runs the same code quietly over one command to hand out its parameters again.
+struct Lexer {
+  std::string_view t;
+  bool cnc = false;
+  ParsedFile* out = nullptr;  // null: quiet (re-lexing a command that was parsed before)
+
+  void error(uint32_t b, uint32_t e, std::string msg) const {
+    if (out) out->errors.push_back({Span{b, e}, std::move(msg)});
+  }
+  uint32_t skip_blanks(uint32_t p, uint32_t e) const {
+    for (;;) {
+      while (p < e && is_blank(t[p])) ++p;
+      if (cnc && p < e && t[p] == '(') {  // CNC-mode ( ) comment, treated as a blank
+        while (p < e && t[p] != ')') ++p;
+        if (p < e) ++p;
+        continue;
+      }
+      return p;
+    }
+  }
   // Skips a quoted string starting at `p` (on the opening quote). Returns the position after it, or `e` and
   // records an error when the string is not closed.
-  uint32_t skip_string(uint32_t p, uint32_t e);
-  // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole.
-  uint32_t skip_braces(uint32_t p, uint32_t e);
-  uint32_t skip_blanks(uint32_t p, uint32_t e);
+  uint32_t skip_string(uint32_t p, uint32_t e) const {
+    const uint32_t start = p++;
+    while (p < e) {
+      const char c = t[p];
+      if (c == '"') {
+        if (p + 1 < e && t[p + 1] == '"') {
+          p += 2;
+          continue;
+        }
+        return p + 1;
+      }
+      if (static_cast<unsigned char>(c) < 0x20 && c != '\t') break;
+      if (c == '\t') error(p, p + 1, "control character in string: a tab inside quotes is rejected by RRF");
+      ++p;
+    }
+    error(start, e, "unterminated string: a quoted string must end with '\"' on the same line");
+    return e;
+  }
   // Did a ';' cut an open expression at `e`, the end of the code? Only when the comment after it holds the
   // `closer` the expression lacks: `X{a ; b}` is cut, `X{a ; note` just misses its '}'.
   bool cut_by_semicolon(uint32_t e, char closer) const {
-    while (e < t_.size() && is_blank(t_[e])) ++e;
-    if (e >= t_.size() || t_[e] != ';') return false;
-    for (; e < t_.size() && t_[e] != '\n' && t_[e] != '\r' && t_[e] != '\0'; ++e)
-      if (t_[e] == closer) return true;
+    while (e < t.size() && is_blank(t[e])) ++e;
+    if (e >= t.size() || t[e] != ';') return false;
+    for (; e < t.size() && t[e] != '\n' && t[e] != '\r' && t[e] != '\0'; ++e)
+      if (t[e] == closer) return true;
     return false;
   }
+  // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole.
+  uint32_t skip_braces(uint32_t p, uint32_t e) const {
+    const uint32_t start = p;
+    int depth = 0;
+    while (p < e) {
+      const char c = t[p];
+      if (c == '"') {
+        p = skip_string(p, e);
+        continue;
+      }
+      if (c == '{') ++depth;
+      else if (c == '}' && --depth == 0) return p + 1;
+      ++p;
+    }
+    // A ';' that cut the line is RRF113's finding (semicolon-in-expression), not a syntax error.
+    if (out) {
+      if (cut_by_semicolon(e, '}')) out->semicolon_cuts.push_back(Span{start, e});
+      else error(start, e, "unterminated '{': the expression has no closing '}'");
+    }
+    return e;
+  }
+  uint32_t parse_value(uint32_t p, uint32_t e, Param& param) const;
+  // The parameter that a T{…} or an unlettered string command starts with. False when there is none.
+  bool first_param(const Command& c, uint32_t& p, uint32_t e, Param& param) const;
+  // The lettered parameter at `p` (blanks skipped first). False at the end, or at the next command of the line.
+  bool next_param(const Command& c, uint32_t& p, uint32_t e, Param& param) const;
+};
+
+uint32_t Lexer::parse_value(uint32_t p, uint32_t e, Param& param) const {
+  // A value runs to the next parameter letter (or G/M command letter) outside quotes and braces.
+  // An E or e straight after a digit is an exponent, not a parameter (rrf-semantics §1.8).
+  const uint32_t vb = skip_blanks(p, e);
+  uint32_t q = vb;
+  bool colon = false;
+  while (q < e) {
+    const char c = t[q];
+    if (c == '"') {
+      q = skip_string(q, e);
+      continue;
+    }
+    if (c == '{') {
+      param.has_expr = true;
+      q = skip_braces(q, e);
+      continue;
+    }
+    if (cnc && c == '(') break;
+    if (is_alpha(c)) {
+      if ((c == 'E' || c == 'e') && q > vb && is_digit(t[q - 1])) {
+        param.exponent_letter = true;
+        ++q;
+        if (q < e && (t[q] == '+' || t[q] == '-')) ++q;
+        continue;
+      }
+      break;
+    }
+    if (c == '\'' && q + 1 < e && is_alpha(t[q + 1])) break;
+    if (c == ':') {
+      colon = true;
+      if (q > vb && is_blank(t[q - 1])) param.blank_before_colon = true;
+    }
+    ++q;
+  }
+  uint32_t ve = q;
+  while (ve > vb && is_blank(t[ve - 1])) --ve;
+  param.value = Span{vb, ve};
+  if (vb == ve) {
+    param.kind = ValueKind::None;
+  } else {
+    const char f = t[vb];
+    if (colon) param.kind = ValueKind::List;
+    else if (f == '"') param.kind = ValueKind::String;
+    else if (f == '{') param.kind = ValueKind::Expression;
+    else if (is_digit(f) || f == '-' || f == '+' || f == '.') param.kind = ValueKind::Number;
+    else param.kind = ValueKind::Text;
+  }
+  return q;
+}
+
+bool Lexer::first_param(const Command& c, uint32_t& p, uint32_t e, Param& param) const {
+  if (c.number_expr) {
+    // T{expr} is T with a T parameter: the expression is that parameter.
+    param = Param{};
+    param.letter = 'T';
+    param.span = param.value = Span{c.word.begin + 1, c.word.end};
+    param.kind = ValueKind::Expression;
+    param.has_expr = true;
+    return true;
+  }
+  if (!unlettered_string(c)) return false;
+  // Unprecedented string commands (M117 text, M23 file) take everything after the code as one string.
+  const uint32_t q = skip_blanks(p, e);
+  p = e;
+  if (q >= e) return false;
+  param = Param{};
+  param.span = param.value = Span{q, e};
+  param.kind = t[q] == '"' ? ValueKind::String : t[q] == '{' ? ValueKind::Expression : ValueKind::Text;
+  if (param.kind == ValueKind::String) param.span = param.value = Span{q, skip_string(q, e)};
+  return true;
+}
+
+bool Lexer::next_param(const Command& cmd, uint32_t& p, uint32_t e, Param& param) const {
+  p = skip_blanks(p, e);
+  if (p >= e) return false;
+  const char c = t[p];
+  if (c == 'G' || c == 'g' || c == 'M' || c == 'm') return false;  // the next command on this line
+  param = Param{};
+  const uint32_t pb = p;
+  if (c == '\'' && p + 1 < e && is_alpha(t[p + 1])) {
+    param.letter = lower(t[p + 1]);
+    p += 2;
+  } else if (is_alpha(c)) {
+    param.letter = upper(c);
+    ++p;
+  } else {
+    param.letter = 0;  // stray text before the first letter (RRF skips it): an unlettered parameter
+  }
+  if (param.letter == 'P' && p < e && t[p] != '"' && t[p] != '{' && cmd.fraction < 0 &&
+      takes_rest_of_line(cmd.letter, cmd.number)) {
+    param.value = Span{p, e};
+    param.kind = ValueKind::Text;
+    p = e;
+  } else if (param.letter == 0) {
+    uint32_t q = p;
+    while (q < e && !is_alpha(t[q])) {
+      if (t[q] == '"') q = skip_string(q, e);
+      else if (t[q] == '{') q = skip_braces(q, e);
+      else ++q;
+    }
+    param.value = Span{p, q};
+    while (param.value.end > param.value.begin && is_blank(t[param.value.end - 1])) --param.value.end;
+    param.kind = ValueKind::Text;
+    p = q;
+  } else {
+    p = parse_value(p, e, param);
+  }
+  param.span = Span{pb, param.value.empty() ? (param.letter >= 'a' ? pb + 2 : pb + 1) : param.value.end};
+  return true;
+}
+
+// ---- Tables: records in, values out ----
+
+void CommandTable::add(const Command& c) {
+  detail::CommandRec r;
+  const auto i = static_cast<uint32_t>(recs_.size());
+  r.begin = c.span.begin;
+  r.end = c.span.end;
+  r.line = c.line;
+  r.number = c.number;
+  r.fraction = c.fraction;
+  const uint32_t wl = c.word.end - c.word.begin;
+  r.word_len = static_cast<uint8_t>(wl < 255 ? wl : 255);
+  if (wl >= 255) long_words_[i] = c.word.end;
+  r.param_count = static_cast<uint8_t>(c.param_count < 255 ? c.param_count : 255);
+  if (c.param_count >= 255) big_counts_[i] = c.param_count;
+  r.bits = static_cast<uint8_t>((c.letter == 'G' ? 0 : c.letter == 'M' ? 1 : 2) | (c.number_expr ? kNumberExpr : 0) |
+                                (c.has_number ? kHasNumber : 0) | (c.cnc ? kCnc : 0) |
+                                (c.any_exponent ? kAnyExponent : 0) | (c.any_blank_before_colon ? kAnyBlankColon : 0));
+  recs_.push_back(r);
+}
+
+Command CommandTable::operator[](size_t i) const {
+  const detail::CommandRec& r = recs_[i];
+  Command c;
+  c.span = Span{r.begin, r.end};
+  c.word = Span{r.begin, r.word_len < 255 ? r.begin + r.word_len : long_words_.at(static_cast<uint32_t>(i))};
+  const unsigned l = r.bits & kLetterMask;
+  c.letter = l == 0 ? 'G' : l == 1 ? 'M' : 'T';
+  c.number = r.number;
+  c.fraction = r.fraction;
+  c.number_expr = r.bits & kNumberExpr;
+  c.has_number = r.bits & kHasNumber;
+  c.cnc = r.bits & kCnc;
+  c.any_exponent = r.bits & kAnyExponent;
+  c.any_blank_before_colon = r.bits & kAnyBlankColon;
+  c.line = r.line;
+  c.param_count = r.param_count < 255 ? r.param_count : big_counts_.at(static_cast<uint32_t>(i));
+  return c;
+}
+
+void LineTable::add(const Line& l) {
+  detail::LineRec r;
+  const auto i = static_cast<uint32_t>(recs_.size());
+  r.code_begin = l.code.begin;
+  r.code_end = l.code.end;
+  if (l.kind == LineKind::Meta) {
+    r.first = static_cast<uint32_t>(metas_.size());
+    metas_.push_back({l.meta_arg, l.meta_name});
+  } else {
+    r.first = l.first_command;
+  }
+  r.indent = static_cast<uint16_t>(l.indent < 65535 ? l.indent : 65535);
+  r.stored_length = static_cast<uint16_t>(l.stored_length < 65535 ? l.stored_length : 65535);
+  r.command_count = static_cast<uint16_t>(l.command_count < 65535 ? l.command_count : 65535);
+  if (l.command_count >= 65535) big_counts_[i] = l.command_count;
+  r.kind_meta = static_cast<uint8_t>(static_cast<unsigned>(l.kind) | (static_cast<unsigned>(l.meta) << 3));
+  r.flags = static_cast<uint8_t>((l.indent_tabs ? kIndentTabs : 0) | (l.indent_spaces ? kIndentSpaces : 0) |
+                                 (l.line_number ? kLineNumber : 0) | (l.checksum ? kChecksum : 0) |
+                                 (l.conditional ? kConditional : 0) | (l.in_loop ? kInLoop : 0) |
+                                 (l.after_nul ? kAfterNul : 0));
+  recs_.push_back(r);
+}
+
+Line LineTable::operator[](size_t i) const {
+  const detail::LineRec& r = recs_[i];
+  const std::string_view t = source_->text();
+  Line l;
+  l.span = spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i];
+  l.code = Span{r.code_begin, r.code_end};
+  l.kind = static_cast<LineKind>(r.kind_meta & 7);
+  l.meta = static_cast<MetaKind>(r.kind_meta >> 3);
+  l.indent = r.indent;
+  l.stored_length = r.stored_length;
+  l.command_count = r.command_count < 65535 ? r.command_count : big_counts_.at(static_cast<uint32_t>(i));
+  if (l.kind == LineKind::Meta) {
+    l.meta_arg = metas_[r.first].arg;
+    l.meta_name = metas_[r.first].name;
+  } else if (l.kind == LineKind::Commands || l.kind == LineKind::Bad) {
+    l.first_command = r.first;
+  }
+  l.indent_tabs = r.flags & kIndentTabs;
+  l.indent_spaces = r.flags & kIndentSpaces;
+  l.line_number = r.flags & kLineNumber;
+  l.checksum = r.flags & kChecksum;
+  l.conditional = r.flags & kConditional;
+  l.in_loop = r.flags & kInLoop;
+  l.after_nul = r.flags & kAfterNul;
+  // The comment: after the code (and a checksum), or the whole line after its indentation when it has no code.
+  uint32_t e = l.span.end;
+  if (r.flags & kCutByDel) {
+    const void* del = std::memchr(t.data() + l.span.begin, 0x7f, l.span.end - l.span.begin);
+    if (del) e = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
+  }
+  uint32_t q = (r.code_begin == 0 && r.code_end == 0) ? l.span.begin : r.code_end;
+  while (q < e && is_blank(t[q])) ++q;
+  if (q < e && t[q] == '*' && l.checksum)
+    while (q < e && t[q] != ';') ++q;
+  if (q < e && t[q] == ';') l.comment = Span{q, e};
+  return l;
+}
+
+// ---- The line parser ----
+
+class LineParser {
+ public:
+  LineParser(ParsedFile& out, const ParseOptions& opts) : out_(out), lex_{out.source->text(), opts.cnc_mode, &out} {}
+
+  void parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool may_have_del);
+
+ private:
+  void error(uint32_t b, uint32_t e, std::string msg) { lex_.error(b, e, std::move(msg)); }
   void parse_meta(Line& line, MetaKind kind, uint32_t after_kw, uint32_t e);
   void parse_commands(Line& line, uint32_t b, uint32_t e);
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
-  uint32_t parse_value(uint32_t p, uint32_t e, Param& param);
+  void add_line(const Line& line, bool cut_by_del) {
+    out_.lines.add(line);
+    if (cut_by_del) out_.lines.recs_.back().flags |= kCutByDel;
+  }
 
   ParsedFile& out_;
-  std::string_view t_;
-  bool cnc_;
+  Lexer lex_;
+  bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
+  friend ParsedFile parse(const SourceFile&, const ParseOptions&);
 };
-
-uint32_t LineParser::skip_blanks(uint32_t p, uint32_t e) {
-  for (;;) {
-    while (p < e && is_blank(t_[p])) ++p;
-    if (cnc_ && p < e && t_[p] == '(') {  // CNC-mode ( ) comment, treated as a blank
-      while (p < e && t_[p] != ')') ++p;
-      if (p < e) ++p;
-      continue;
-    }
-    return p;
-  }
-}
-
-uint32_t LineParser::skip_string(uint32_t p, uint32_t e) {
-  const uint32_t start = p++;
-  while (p < e) {
-    char c = t_[p];
-    if (c == '"') {
-      if (p + 1 < e && t_[p + 1] == '"') {
-        p += 2;
-        continue;
-      }
-      return p + 1;
-    }
-    if (static_cast<unsigned char>(c) < 0x20 && c != '\t') break;
-    if (c == '\t') {
-      error(p, p + 1, "control character in string: a tab inside quotes is rejected by RRF");
-    }
-    ++p;
-  }
-  error(start, e, "unterminated string: a quoted string must end with '\"' on the same line");
-  return e;
-}
-
-uint32_t LineParser::skip_braces(uint32_t p, uint32_t e) {
-  const uint32_t start = p;
-  int depth = 0;
-  while (p < e) {
-    char c = t_[p];
-    if (c == '"') {
-      p = skip_string(p, e);
-      continue;
-    }
-    if (c == '{') ++depth;
-    else if (c == '}') {
-      if (--depth == 0) return p + 1;
-    }
-    ++p;
-  }
-  // A ';' that cut the line is RRF113's finding (semicolon-in-expression), not a syntax error.
-  if (cut_by_semicolon(e, '}')) out_.semicolon_cuts.push_back(Span{start, e});
-  else error(start, e, "unterminated '{': the expression has no closing '}'");
-  return e;
-}
 
 void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what) {
   // Parsed just far enough to know it is an expression: balanced brackets and closed strings.
+  const std::string_view t = lex_.t;
   std::string stack;
   for (uint32_t p = b; p < e; ++p) {
-    char c = t_[p];
+    const char c = t[p];
     if (c == '"') {
-      p = skip_string(p, e) - 1;
+      p = lex_.skip_string(p, e) - 1;
       continue;
     }
-    if (c == '\'' && p + 2 < e && t_[p + 2] == '\'') {  // character literal 'x' (3.5+)
+    if (c == '\'' && p + 2 < e && t[p + 2] == '\'') {  // character literal 'x' (3.5+)
       p += 2;
       continue;
     }
-    if (c == '(' || c == '[' || c == '{') stack.push_back(c);
-    else if (c == ')' || c == ']' || c == '}') {
-      char want = c == ')' ? '(' : c == ']' ? '[' : '{';
+    if (c == '(' || c == '[' || c == '{') {
+      stack.push_back(c);
+    } else if (c == ')' || c == ']' || c == '}') {
+      const char want = c == ')' ? '(' : c == ']' ? '[' : '{';
       if (stack.empty() || stack.back() != want) {
         error(p, p + 1, fmt::format("unbalanced '{}' in {}", c, what));
         return;
@@ -135,19 +392,20 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what)
   }
   if (!stack.empty()) {
     const char closer = stack.back() == '(' ? ')' : stack.back() == '[' ? ']' : '}';
-    if (cut_by_semicolon(e, closer)) out_.semicolon_cuts.push_back(Span{b, e});
+    if (lex_.cut_by_semicolon(e, closer)) out_.semicolon_cuts.push_back(Span{b, e});
     else error(b, e, fmt::format("unclosed '{}' in {}", stack.back(), what));
   }
 }
 
-void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul) {
+void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool may_have_del) {
+  const std::string_view t = lex_.t;
   Line line;
   line.span = Span{b, e};
   line.after_nul = after_nul;
   uint32_t p = b;
   // Indentation: a blank counts 1, a tab advances to the next multiple of 4.
-  while (p < e && is_blank(t_[p])) {
-    if (t_[p] == '\t') {
+  while (p < e && is_blank(t[p])) {
+    if (t[p] == '\t') {
       line.indent = (line.indent + 4) & ~3u;
       line.indent_tabs = true;
     } else {
@@ -157,29 +415,31 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul) {
     ++p;
   }
   // 0x7F discards the rest of the line.
-  for (uint32_t k = p; k < e; ++k) {
-    if (t_[k] == '\x7f') {
+  bool cut_by_del = false;
+  if (may_have_del && p < e) {
+    if (const void* del = std::memchr(t.data() + p, 0x7f, e - p)) {
+      const auto k = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
       error(k, e, "byte 0x7F: RRF discards the rest of the line from here");
       e = k;
-      break;
+      cut_by_del = true;
     }
   }
   if (p >= e) {
-    out_.lines.push_back(line);
+    add_line(line, cut_by_del);
     return;
   }
-  if (t_[p] == ';') {
+  if (t[p] == ';') {
     line.comment = Span{p, e};
     line.kind = line.indent == 0 ? LineKind::Comment : LineKind::Blank;
-    out_.lines.push_back(line);
+    add_line(line, cut_by_del);
     return;
   }
   // Optional line number N<digits>.
-  if ((t_[p] == 'N' || t_[p] == 'n') && p + 1 < e && is_digit(t_[p + 1])) {
+  if ((t[p] == 'N' || t[p] == 'n') && p + 1 < e && is_digit(t[p + 1])) {
     line.line_number = true;
     ++p;
-    while (p < e && is_digit(t_[p])) ++p;
-    while (p < e && is_blank(t_[p])) ++p;
+    while (p < e && is_digit(t[p])) ++p;
+    while (p < e && is_blank(t[p])) ++p;
   }
   const uint32_t code_begin = p;
   // Find the end of the code: ';' outside quotes (braces do not protect it), '*' after N outside braces.
@@ -189,15 +449,18 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul) {
     bool in_quote = false;
     int braces = 0;
     for (uint32_t k = p; k < e; ++k) {
-      char c = t_[k];
+      const char c = t[k];
       if (in_quote) {
         if (c == '"') in_quote = false;  // "" re-enters at once: same result
         continue;
       }
-      if (c == '"') in_quote = true;
-      else if (c == '{') ++braces;
-      else if (c == '}') braces = braces > 0 ? braces - 1 : 0;
-      else if (c == ';') {
+      if (c == '"') {
+        in_quote = true;
+      } else if (c == '{') {
+        ++braces;
+      } else if (c == '}') {
+        braces = braces > 0 ? braces - 1 : 0;
+      } else if (c == ';') {
         code_end = k;
         line.comment = Span{k, e};
         break;
@@ -205,12 +468,12 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul) {
         code_end = k;
         line.checksum = true;
         uint32_t q = k + 1;
-        while (q < e && t_[q] != ';') ++q;
+        while (q < e && t[q] != ';') ++q;
         if (q < e) line.comment = Span{q, e};
         break;
-      } else if (c == '(' && cnc_ && braces == 0) {
+      } else if (c == '(' && lex_.cnc && braces == 0) {
         uint32_t q = k;
-        while (q < e && t_[q] != ')') ++q;
+        while (q < e && t[q] != ')') ++q;
         paren_chars += (q < e ? q + 1 : e) - k;
         k = q < e ? q : e - 1;
       }
@@ -218,36 +481,37 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul) {
   }
   line.stored_length = code_end - code_begin - paren_chars;
   uint32_t ce = code_end;
-  while (ce > code_begin && is_blank(t_[ce - 1])) --ce;
+  while (ce > code_begin && is_blank(t[ce - 1])) --ce;
   line.code = Span{code_begin, ce};
   if (ce == code_begin) {
-    out_.lines.push_back(line);
+    add_line(line, cut_by_del);
     return;
   }
   // Meta command: 2-8 lowercase letters followed by end, blank, '{', '"' or '('.
-  {
+  if (t[code_begin] >= 'a' && t[code_begin] <= 'z') {
     uint32_t q = code_begin;
-    while (q < ce && t_[q] >= 'a' && t_[q] <= 'z' && q - code_begin <= 8) ++q;
-    uint32_t len = q - code_begin;
-    if (len >= 2 && len <= 8 && (q == ce || is_blank(t_[q]) || t_[q] == '{' || t_[q] == '"' || t_[q] == '(')) {
-      std::string_view word = t_.substr(code_begin, len);
+    while (q < ce && t[q] >= 'a' && t[q] <= 'z' && q - code_begin <= 8) ++q;
+    const uint32_t len = q - code_begin;
+    if (len >= 2 && len <= 8 && (q == ce || is_blank(t[q]) || t[q] == '{' || t[q] == '"' || t[q] == '(')) {
+      const std::string_view word = t.substr(code_begin, len);
       for (const auto& mw : kMetaWords) {
         if (mw.word == word) {
           line.kind = LineKind::Meta;
           line.meta = mw.kind;
           parse_meta(line, mw.kind, q, ce);
-          out_.lines.push_back(line);
+          add_line(line, cut_by_del);
           return;
         }
       }
     }
   }
   parse_commands(line, code_begin, ce);
-  out_.lines.push_back(line);
+  add_line(line, cut_by_del);
 }
 
 void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
-  p = skip_blanks(p, e);
+  const std::string_view t = lex_.t;
+  p = lex_.skip_blanks(p, e);
   line.meta_arg = Span{p, e};
   const std::string_view kw = meta_keyword(kind);
   switch (kind) {
@@ -265,7 +529,7 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
     case MetaKind::Set: {
       uint32_t q = p;
       if (kind == MetaKind::Set) {
-        std::string_view rest = t_.substr(p, e - p);
+        const std::string_view rest = t.substr(p, e - p);
         if (rest.starts_with("var.")) q += 4;
         else if (rest.starts_with("global.")) q += 7;
         else {
@@ -273,10 +537,10 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
           return;
         }
       }
-      uint32_t name_begin = q;
-      if (q < e && is_alpha(t_[q])) {
+      const uint32_t name_begin = q;
+      if (q < e && is_alpha(t[q])) {
         ++q;
-        while (q < e && (is_alpha(t_[q]) || is_digit(t_[q]) || t_[q] == '_')) ++q;
+        while (q < e && (is_alpha(t[q]) || is_digit(t[q]) || t[q] == '_')) ++q;
       }
       if (q == name_begin) {
         error(p, e, fmt::format("expected a {}variable name after '{}'", kind == MetaKind::Set ? "" : "new ", kw));
@@ -285,12 +549,12 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
       line.meta_name = Span{kind == MetaKind::Set ? p : name_begin, q};
       if (q - name_begin > 120) error(name_begin, q, "variable name longer than 120 characters");
       if (kind == MetaKind::Set) {  // optional indices [i]
-        while (q < e && t_[q] == '[') {
+        while (q < e && t[q] == '[') {
           uint32_t r = q;
           int d = 0;
           for (; r < e; ++r) {
-            if (t_[r] == '[') ++d;
-            else if (t_[r] == ']' && --d == 0) break;
+            if (t[r] == '[') ++d;
+            else if (t[r] == ']' && --d == 0) break;
           }
           if (r >= e) {
             error(q, e, "unclosed '[' in the variable index");
@@ -299,12 +563,12 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
           q = r + 1;
         }
       }
-      q = skip_blanks(q, e);
-      if (q >= e || t_[q] != '=') {
+      q = lex_.skip_blanks(q, e);
+      if (q >= e || t[q] != '=') {
         error(q < e ? q : e, e, "expected '='");
         return;
       }
-      q = skip_blanks(q + 1, e);
+      q = lex_.skip_blanks(q + 1, e);
       if (q >= e) {
         error(line.code.begin, e, "expected an expression after '='");
         return;
@@ -322,79 +586,32 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
   }
 }
 
-uint32_t LineParser::parse_value(uint32_t p, uint32_t e, Param& param) {
-  // A value runs to the next parameter letter (or G/M command letter) outside quotes and braces.
-  // An E or e straight after a digit is an exponent, not a parameter (rrf-semantics §1.8).
-  uint32_t vb = skip_blanks(p, e);
-  uint32_t q = vb;
-  bool colon = false;
-  while (q < e) {
-    char c = t_[q];
-    if (c == '"') {
-      q = skip_string(q, e);
-      continue;
-    }
-    if (c == '{') {
-      param.has_expr = true;
-      q = skip_braces(q, e);
-      continue;
-    }
-    if (cnc_ && c == '(') break;
-    if (is_alpha(c)) {
-      if ((c == 'E' || c == 'e') && q > vb && is_digit(t_[q - 1])) {
-        param.exponent_letter = true;
-        ++q;
-        if (q < e && (t_[q] == '+' || t_[q] == '-')) ++q;
-        continue;
-      }
-      break;
-    }
-    if (c == '\'' && q + 1 < e && is_alpha(t_[q + 1])) break;
-    if (c == ':') {
-      colon = true;
-      if (q > vb && is_blank(t_[q - 1])) param.blank_before_colon = true;
-    }
-    ++q;
-  }
-  uint32_t ve = q;
-  while (ve > vb && is_blank(t_[ve - 1])) --ve;
-  param.value = Span{vb, ve};
-  if (vb == ve) param.kind = ValueKind::None;
-  else {
-    char f = t_[vb];
-    if (colon) param.kind = ValueKind::List;
-    else if (f == '"') param.kind = ValueKind::String;
-    else if (f == '{') param.kind = ValueKind::Expression;
-    else if (is_digit(f) || f == '-' || f == '+' || f == '.') param.kind = ValueKind::Number;
-    else param.kind = ValueKind::Text;
-  }
-  return q;
-}
-
 void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
+  const std::string_view t = lex_.t;
   line.kind = LineKind::Commands;
   line.first_command = static_cast<uint32_t>(out_.commands.size());
   const auto line_index = static_cast<uint32_t>(out_.lines.size());
   uint32_t p = b;
   bool first = true;
   while (true) {
-    p = skip_blanks(p, e);
+    p = lex_.skip_blanks(p, e);
     if (p >= e) break;
     Command cmd;
     cmd.line = line_index;
+    cmd.cnc = lex_.cnc;
     const uint32_t cb = p;
-    char L = upper(t_[p]);
+    const char L = upper(t[p]);
     if (L != 'G' && L != 'M' && L != 'T') {
       if (first) {
-        std::string_view text = t_.substr(b, e - b);
+        std::string_view text = t.substr(b, e - b);
         if (text.size() > 40) text = text.substr(0, 40);
         bool kw_case = false;
         for (const auto& mw : kMetaWords) {
-          std::string_view w = mw.word;
+          const std::string_view w = mw.word;
           if (e - b >= w.size()) {
             bool eq = true;
-            for (size_t k = 0; k < w.size(); ++k) eq = eq && lower(t_[b + k]) == w[k];
-            if (eq && (e - b == w.size() || !is_alpha(t_[b + w.size()]))) kw_case = true;
+            for (size_t k = 0; k < w.size(); ++k) eq = eq && lower(t[b + k]) == w[k];
+            if (eq && (e - b == w.size() || !is_alpha(t[b + w.size()]))) kw_case = true;
           }
         }
         error(b, e, kw_case ? fmt::format("Bad command: '{}': meta-command keywords must be lowercase", text)
@@ -406,36 +623,26 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
     first = false;
     cmd.letter = L;
     ++p;
-    if (L == 'T' && p < e && t_[p] == '{') {
-      uint32_t q = skip_braces(p, e);
+    if (L == 'T' && p < e && t[p] == '{') {
+      const uint32_t q = lex_.skip_braces(p, e);
       cmd.number_expr = true;
       cmd.word = Span{cb, q};
-      // T{expr} is T with a T parameter: record the expression as that parameter.
-      Param tp;
-      tp.letter = 'T';
-      tp.span = Span{p, q};
-      tp.value = Span{p, q};
-      tp.kind = ValueKind::Expression;
-      tp.has_expr = true;
-      cmd.first_param = static_cast<uint32_t>(out_.params.size());
-      out_.params.push_back(tp);
-      cmd.param_count = 1;
       p = q;
     } else {
       bool neg = false;
-      if (p < e && t_[p] == '-' && p + 1 < e && is_digit(t_[p + 1])) {
+      if (p < e && t[p] == '-' && p + 1 < e && is_digit(t[p + 1])) {
         neg = true;
         ++p;
       }
-      uint32_t db = p;
+      const uint32_t db = p;
       int64_t n = 0;
-      while (p < e && is_digit(t_[p])) {
-        if (n < 100000000) n = n * 10 + (t_[p] - '0');
+      while (p < e && is_digit(t[p])) {
+        if (n < 100000000) n = n * 10 + (t[p] - '0');
         ++p;
       }
       if (p == db) {
         if (L != 'T') {
-          error(cb, std::min(cb + 1, e), fmt::format("expected a number after '{}'", t_[cb]));
+          error(cb, std::min(cb + 1, e), fmt::format("expected a number after '{}'", t[cb]));
           line.kind = LineKind::Bad;
           break;
         }
@@ -443,77 +650,29 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
         cmd.number = static_cast<int32_t>(neg ? -n : n);
         cmd.has_number = true;
       }
-      if (p + 1 < e && t_[p] == '.' && is_digit(t_[p + 1])) {
-        cmd.fraction = static_cast<int8_t>(t_[p + 1] - '0');
+      if (p + 1 < e && t[p] == '.' && is_digit(t[p + 1])) {
+        cmd.fraction = static_cast<int8_t>(t[p + 1] - '0');
         p += 2;
       }
       cmd.word = Span{cb, p};
-      cmd.first_param = static_cast<uint32_t>(out_.params.size());
     }
-    const bool rest_of_line = takes_rest_of_line(cmd.letter, cmd.number) && cmd.fraction < 0;
-    // Unprecedented string commands (M117 text, M23 file) take everything after the code as one string.
-    const bool unlettered = rest_of_line && cmd.letter == 'M' &&
-                            (cmd.number == 117 || cmd.number == 23 || cmd.number == 28 || cmd.number == 30 ||
-                             cmd.number == 32 || cmd.number == 36);
-    if (unlettered) {
-      uint32_t q = skip_blanks(p, e);
-      if (q < e) {
-        Param tp;
-        tp.letter = 0;
-        tp.span = tp.value = Span{q, e};
-        tp.kind = t_[q] == '"' ? ValueKind::String : t_[q] == '{' ? ValueKind::Expression : ValueKind::Text;
-        if (tp.kind == ValueKind::String) {
-          uint32_t r = skip_string(q, e);
-          tp.span = tp.value = Span{q, r};
-        }
-        out_.params.push_back(tp);
-        ++cmd.param_count;
-      }
-      p = e;
-    }
-    for (;;) {
-      p = skip_blanks(p, e);
-      if (p >= e) break;
-      char c = t_[p];
-      if (c == 'G' || c == 'g' || c == 'M' || c == 'm') break;  // the next command on this line
-      Param param;
-      const uint32_t pb = p;
-      if (c == '\'' && p + 1 < e && is_alpha(t_[p + 1])) {
-        param.letter = lower(t_[p + 1]);
-        p += 2;
-      } else if (is_alpha(c)) {
-        param.letter = upper(c);
-        ++p;
-      } else {
-        // Stray text before the first letter (RRF skips it); keep it as an unlettered parameter.
-        param.letter = 0;
-      }
-      if (rest_of_line && param.letter == 'P' && p < e && t_[p] != '"' && t_[p] != '{') {
-        param.value = Span{p, e};
-        param.kind = p < e ? ValueKind::Text : ValueKind::None;
-        p = e;
-      } else if (param.letter == 0) {
-        uint32_t q = p;
-        while (q < e && !is_alpha(t_[q])) {
-          if (t_[q] == '"') q = skip_string(q, e);
-          else if (t_[q] == '{') q = skip_braces(q, e);
-          else ++q;
-        }
-        param.value = Span{p, q};
-        while (param.value.end > param.value.begin && is_blank(t_[param.value.end - 1])) --param.value.end;
-        param.kind = ValueKind::Text;
-        p = q;
-      } else {
-        p = parse_value(p, e, param);
-      }
-      param.span = Span{pb, param.value.empty() ? (param.letter >= 'a' ? pb + 2 : pb + 1) : param.value.end};
-      out_.params.push_back(param);
+    // The parameters are lexed here for their errors and counted; ParamRange lexes them again on demand.
+    Param param;
+    if (lex_.first_param(cmd, p, e, param)) ++cmd.param_count;
+    while (lex_.next_param(cmd, p, e, param)) {
       ++cmd.param_count;
+      cmd.any_exponent = cmd.any_exponent || param.exponent_letter;
+      cmd.any_blank_before_colon = cmd.any_blank_before_colon || param.blank_before_colon;
     }
     uint32_t end = p;
-    while (end > cb && is_blank(t_[end - 1])) --end;
+    while (end > cb && is_blank(t[end - 1])) --end;
     cmd.span = Span{cb, end};
-    out_.commands.push_back(cmd);
+    // Track the machine mode for ( ) comments: M453 = CNC, M451/M452 = not; it applies from the next line.
+    if (cmd.letter == 'M' && cmd.fraction < 0) {
+      if (cmd.number == 453) next_cnc_ = true;
+      else if (cmd.number == 451 || cmd.number == 452) next_cnc_ = false;
+    }
+    out_.commands.add(cmd);
     ++line.command_count;
   }
 }
@@ -527,38 +686,36 @@ void compute_blocks(ParsedFile& pf) {
   std::vector<Open> stack{{0, MetaKind::None, MetaKind::None}};
   MetaKind prev_meta = MetaKind::None;
   bool saw_tabs = false, saw_spaces = false;
-  for (Line& line : pf.lines) {
-    if (line.kind != LineKind::Commands && line.kind != LineKind::Meta && line.kind != LineKind::Bad) continue;
+  for (detail::LineRec& line : pf.lines.recs_) {
+    const auto kind = static_cast<LineKind>(line.kind_meta & 7);
+    const auto meta = static_cast<MetaKind>(line.kind_meta >> 3);
+    if (kind != LineKind::Commands && kind != LineKind::Meta && kind != LineKind::Bad) continue;
     while (stack.size() > 1 && line.indent < stack.back().indent) stack.pop_back();
     if (line.indent > stack.back().indent) {
-      bool opener = prev_meta == MetaKind::If || prev_meta == MetaKind::Elif || prev_meta == MetaKind::Else ||
-                    prev_meta == MetaKind::While;
+      const bool opener = prev_meta == MetaKind::If || prev_meta == MetaKind::Elif || prev_meta == MetaKind::Else ||
+                          prev_meta == MetaKind::While;
       stack.push_back({line.indent, opener ? prev_meta : MetaKind::None, MetaKind::None});
-      if (line.indent_tabs) saw_tabs = true;
-      if (line.indent_spaces) saw_spaces = true;
+      if (line.flags & kIndentTabs) saw_tabs = true;
+      if (line.flags & kIndentSpaces) saw_spaces = true;
     }
     for (size_t k = 1; k < stack.size(); ++k) {
-      MetaKind kk = stack[k].kind;
-      if (kk == MetaKind::If || kk == MetaKind::Elif || kk == MetaKind::Else) line.conditional = true;
-      if (kk == MetaKind::While) line.in_loop = true;
+      const MetaKind kk = stack[k].kind;
+      if (kk == MetaKind::If || kk == MetaKind::Elif || kk == MetaKind::Else) line.flags |= kConditional;
+      if (kk == MetaKind::While) line.flags |= kInLoop;
     }
-    if (line.meta == MetaKind::Else || line.meta == MetaKind::Elif) {
-      MetaKind last = stack.back().last;
-      if (last != MetaKind::If && last != MetaKind::Elif) {
-        pf.errors.push_back({line.code, fmt::format("'{}' did not follow 'if' at the same indentation",
-                                                    meta_keyword(line.meta))});
-      }
+    const Span code{line.code_begin, line.code_end};
+    if (meta == MetaKind::Else || meta == MetaKind::Elif) {
+      const MetaKind last = stack.back().last;
+      if (last != MetaKind::If && last != MetaKind::Elif)
+        pf.errors.push_back({code, fmt::format("'{}' did not follow 'if' at the same indentation", meta_keyword(meta))});
     }
-    if ((line.meta == MetaKind::Break || line.meta == MetaKind::Continue) && !line.in_loop) {
-      pf.errors.push_back({line.code, fmt::format("'{}' was not inside a loop", meta_keyword(line.meta))});
-    }
-    stack.back().last = line.meta;
-    prev_meta = line.meta;
+    if ((meta == MetaKind::Break || meta == MetaKind::Continue) && !(line.flags & kInLoop))
+      pf.errors.push_back({code, fmt::format("'{}' was not inside a loop", meta_keyword(meta))});
+    stack.back().last = meta;
+    prev_meta = meta;
   }
   pf.mixed_indentation = saw_tabs && saw_spaces;
 }
-
-}  // namespace
 
 std::string_view meta_keyword(MetaKind k) {
   for (const auto& mw : kMetaWords)
@@ -577,38 +734,50 @@ bool takes_rest_of_line(char letter, int32_t number) {
   }
 }
 
-const Param* ParsedFile::find(const Command& c, char letter) const {
-  for (const Param* p = param_begin(c); p != param_end(c); ++p)
-    if (p->letter == letter) return p;
-  return nullptr;
+ParamRange::iterator::iterator(std::string_view text, const Command& c) : t_(text), c_(c), done_(false) {
+  pos_ = c.word.end;
+  ++*this;
+}
+
+ParamRange::iterator& ParamRange::iterator::operator++() {
+  const Lexer lex{t_, c_.cnc, nullptr};
+  if (stage_ == 0) {
+    stage_ = 1;
+    if (lex.first_param(c_, pos_, c_.span.end, p_)) return *this;
+  }
+  if (!lex.next_param(c_, pos_, c_.span.end, p_)) done_ = true;
+  return *this;
+}
+
+ParamRef ParsedFile::find(const Command& c, char letter) const {
+  for (const Param& p : params(c))
+    if (p.letter == letter) return ParamRef(p);
+  return ParamRef();
 }
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   ParsedFile pf;
   pf.source = &file;
+  pf.lines.source_ = &file;
   const std::string_view t = file.text();
-  pf.lines.reserve(file.line_count() + 1);
-  pf.commands.reserve(file.line_count());
-  pf.params.reserve(file.line_count() * 3);
-  ParseOptions o = opts;
+  const bool any_nul = std::memchr(t.data(), '\0', t.size()) != nullptr;
+  const bool any_del = std::memchr(t.data(), 0x7f, t.size()) != nullptr;
+  // Exact for lines (plus NUL splits); a config has about one command per line. Reserved, untouched pages cost
+  // no memory, and no vector is copied while it grows on large files.
+  pf.lines.recs_.reserve(file.line_count() + 1);
+  pf.commands.recs_.reserve(file.line_count() + 1);
+  LineParser lp(pf, opts);
   for (uint32_t i = 0; i < file.line_count(); ++i) {
-    Span ls = file.line_span(i);
+    const Span ls = file.line_span(i);
     uint32_t b = ls.begin;
     bool after_nul = false;
     for (;;) {
-      const void* nul = std::memchr(t.data() + b, '\0', ls.end - b);
-      uint32_t e = nul ? static_cast<uint32_t>(static_cast<const char*>(nul) - t.data()) : ls.end;
-      LineParser lp(pf, o);
-      const size_t before = pf.commands.size();
-      lp.parse_logical_line(b, e, after_nul);
-      // Track the machine mode for ( ) comments: M453 = CNC, M451/M452 = not.
-      for (size_t k = before; k < pf.commands.size(); ++k) {
-        const Command& c = pf.commands[k];
-        if (c.letter == 'M' && c.fraction < 0) {
-          if (c.number == 453) o.cnc_mode = true;
-          else if (c.number == 451 || c.number == 452) o.cnc_mode = false;
-        }
-      }
+      const void* nul = any_nul ? std::memchr(t.data() + b, '\0', ls.end - b) : nullptr;
+      const uint32_t e = nul ? static_cast<uint32_t>(static_cast<const char*>(nul) - t.data()) : ls.end;
+      lp.next_cnc_ = lp.lex_.cnc;
+      lp.parse_logical_line(b, e, after_nul, any_del);
+      lp.lex_.cnc = lp.next_cnc_;
+      if (any_nul) pf.lines.spans_.push_back(Span{b, e});
       if (!nul) break;
       pf.errors.push_back({Span{e, e + 1}, "NUL byte: RRF ends the line here and reads the rest as a new line"});
       b = e + 1;

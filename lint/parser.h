@@ -1,11 +1,17 @@
 // The RRF line parser (rrf-semantics §1): bytes -> lines -> commands and parameters, all as spans.
 //
-// One pass per file, no allocation per token: commands and parameters live in two flat vectors of the
-// ParsedFile and refer to each other by index. Parse errors are collected and parsing resumes at the next
-// line, the way RRF itself reports an error and carries on with the next line.
+// One pass per file, no allocation per token. What the pass keeps is small: a 20-byte record per line and per
+// command, decoded into the `Line` and `Command` values below when asked for. Parameters are not stored at all:
+// the pass lexes them once (to report errors and count them) and `ParsedFile::params` / `find` lex a command's
+// parameters again on demand, with the same code. A 100 MB file therefore costs about 1.5x its size in parse
+// records (bench/RESULTS.md, P4). Parse errors are collected and parsing resumes at the next line, the way RRF
+// itself reports an error and carries on with the next line.
 #pragma once
 
+#include <compare>
 #include <cstdint>
+#include <iterator>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +20,9 @@
 #include "source.h"
 
 namespace rrflint {
+
+struct ParsedFile;
+class LineParser;
 
 enum class ValueKind : uint8_t {
   None,        // the letter has no value (`M584 X`)
@@ -34,6 +43,23 @@ struct Param {
   bool blank_before_colon = false;  // a blank before ':' ends the list early (`E3 :4`)
 };
 
+/// A parameter found by `ParsedFile::find`, or none: use it like a pointer (`if (p) … p->value`).
+class ParamRef {
+ public:
+  ParamRef() = default;
+  explicit ParamRef(const Param& p) : p_(p), ok_(true) {}
+  explicit operator bool() const { return ok_; }
+  const Param* operator->() const { return &p_; }
+  const Param& operator*() const { return p_; }
+  /// Is this the same parameter of the same command as `p` (not merely the same letter)?
+  bool is(const Param& p) const { return ok_ && p_.span == p.span; }
+  friend bool operator==(const ParamRef& r, std::nullptr_t) { return !r.ok_; }
+
+ private:
+  Param p_;
+  bool ok_ = false;
+};
+
 struct Command {
   Span span;             // the whole command text, trimmed
   Span word;             // "M563", "g59.3", "T{…}"
@@ -42,8 +68,10 @@ struct Command {
   int8_t fraction = -1;  // digit after '.', -1 if none
   bool number_expr = false;  // T{expr}
   bool has_number = false;   // digits follow the letter: tells `T-1` (deselect) from a bare `T` (report)
+  bool cnc = false;          // parsed in CNC mode: `( )` is a comment inside it
+  bool any_exponent = false;        // some parameter swallowed an E after a digit (Param::exponent_letter)
+  bool any_blank_before_colon = false;  // some parameter has Param::blank_before_colon
   uint32_t line = 0;         // index into ParsedFile::lines
-  uint32_t first_param = 0;
   uint32_t param_count = 0;
   bool is(char l, int32_t n, int8_t f = -1) const { return letter == l && number == n && fraction == f; }
 };
@@ -64,7 +92,7 @@ struct Line {
   Span code;        // the text RRF executes: no indentation, line number, checksum or comment; trimmed
   Span comment;     // the comment text including ';' (empty when none)
   uint32_t indent = 0;      // RRF indent units: a blank counts 1, a tab advances to the next multiple of 4
-  uint32_t stored_length = 0;  // characters RRF stores for the length limit
+  uint32_t stored_length = 0;  // characters RRF stores for the length limit (saturates at 65535)
   uint32_t first_command = 0;
   uint32_t command_count = 0;
   LineKind kind = LineKind::Blank;
@@ -89,11 +117,143 @@ struct ParseOptions {
   bool cnc_mode = false;  // `( )` comments are recognised only in CNC mode (M453)
 };
 
+namespace detail {
+
+// The stored form of a line: 20 bytes. Spans, the comment and the meta-command parts are recovered on decoding.
+struct LineRec {
+  uint32_t code_begin = 0, code_end = 0;
+  uint32_t first = 0;        // Commands/Bad: first command; Meta: index into the meta table
+  uint16_t indent = 0;       // saturated
+  uint16_t stored_length = 0;  // saturated
+  uint16_t command_count = 0;  // saturated: the exact count is then in LineTable::big_counts_
+  uint8_t kind_meta = 0;     // LineKind (3 bits) | MetaKind << 3
+  uint8_t flags = 0;         // LineFlag bits
+};
+
+// The stored form of a command: 20 bytes.
+struct CommandRec {
+  uint32_t begin = 0, end = 0;  // the command's span
+  uint32_t line = 0;
+  int32_t number = -1;
+  uint8_t word_len = 0;     // saturated: the exact word is then in CommandTable::long_words_
+  int8_t fraction = -1;
+  uint8_t bits = 0;         // letter (2 bits) and CommandFlag bits
+  uint8_t param_count = 0;  // saturated: the exact count is then in CommandTable::big_counts_
+};
+
+}  // namespace detail
+
+/// A random-access view that decodes records on access. Elements are values: bind them as `const T&` (the
+/// temporary lives as long as the reference) and never keep pointers to them.
+template <class Table, class T>
+class DecodingIterator {
+ public:
+  using iterator_category = std::random_access_iterator_tag;
+  using value_type = T;
+  using difference_type = std::ptrdiff_t;
+  using pointer = void;
+  using reference = T;
+  DecodingIterator() = default;
+  DecodingIterator(const Table* t, size_t i) : t_(t), i_(i) {}
+  T operator*() const { return (*t_)[i_]; }
+  T operator[](difference_type n) const { return (*t_)[i_ + n]; }
+  DecodingIterator& operator++() { ++i_; return *this; }
+  DecodingIterator operator++(int) { auto r = *this; ++i_; return r; }
+  DecodingIterator& operator--() { --i_; return *this; }
+  DecodingIterator& operator+=(difference_type n) { i_ += n; return *this; }
+  DecodingIterator operator+(difference_type n) const { return {t_, i_ + n}; }
+  DecodingIterator operator-(difference_type n) const { return {t_, i_ - n}; }
+  difference_type operator-(const DecodingIterator& o) const { return static_cast<difference_type>(i_ - o.i_); }
+  friend bool operator==(const DecodingIterator& a, const DecodingIterator& b) { return a.i_ == b.i_; }
+  friend auto operator<=>(const DecodingIterator& a, const DecodingIterator& b) { return a.i_ <=> b.i_; }
+
+ private:
+  const Table* t_ = nullptr;
+  size_t i_ = 0;
+};
+
+/// The commands of a file, in order.
+class CommandTable {
+ public:
+  Command operator[](size_t i) const;
+  size_t size() const { return recs_.size(); }
+  bool empty() const { return recs_.empty(); }
+  DecodingIterator<CommandTable, Command> begin() const { return {this, 0}; }
+  DecodingIterator<CommandTable, Command> end() const { return {this, size()}; }
+
+ private:
+  friend class LineParser;
+  friend struct ParsedFile;
+  friend ParsedFile parse(const SourceFile&, const ParseOptions&);
+  void add(const Command& c);
+  std::vector<detail::CommandRec> recs_;
+  std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words over 255 bytes
+  std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
+};
+
+/// The logical lines of a file, in order (an editor line with NUL bytes holds several).
+class LineTable {
+ public:
+  Line operator[](size_t i) const;
+  size_t size() const { return recs_.size(); }
+  bool empty() const { return recs_.empty(); }
+  DecodingIterator<LineTable, Line> begin() const { return {this, 0}; }
+  DecodingIterator<LineTable, Line> end() const { return {this, size()}; }
+
+ private:
+  friend class LineParser;
+  friend struct ParsedFile;
+  friend ParsedFile parse(const SourceFile&, const ParseOptions&);
+  friend void compute_blocks(ParsedFile&);
+  void add(const Line& l);
+  struct MetaRec {
+    Span arg, name;
+  };
+  const SourceFile* source_ = nullptr;
+  std::vector<detail::LineRec> recs_;
+  std::vector<MetaRec> metas_;
+  std::vector<Span> spans_;  // every logical line's span, kept only when the file has NUL bytes
+  std::map<uint32_t, uint32_t> big_counts_;  // line -> command count, for 65535 or more
+};
+
+/// The parameters of one command, lexed as they are iterated.
+class ParamRange {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type = Param;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Param*;
+    using reference = const Param&;
+    iterator() = default;
+    iterator(std::string_view text, const Command& c);
+    const Param& operator*() const { return p_; }
+    const Param* operator->() const { return &p_; }
+    iterator& operator++();
+    friend bool operator==(const iterator& a, const iterator& b) { return a.done_ == b.done_ && (a.done_ || a.pos_ == b.pos_); }
+
+   private:
+    std::string_view t_;
+    Command c_;
+    uint32_t pos_ = 0;
+    int stage_ = 0;  // 0: the T{…} or unlettered first parameter, 1: lettered parameters
+    bool done_ = true;
+    Param p_;
+  };
+  ParamRange(std::string_view text, const Command& c) : t_(text), c_(c) {}
+  iterator begin() const { return iterator(t_, c_); }
+  iterator end() const { return iterator(); }
+
+ private:
+  std::string_view t_;
+  Command c_;
+};
+
 struct ParsedFile {
   const SourceFile* source = nullptr;
-  std::vector<Line> lines;
-  std::vector<Command> commands;
-  std::vector<Param> params;
+  LineTable lines;
+  CommandTable commands;
   std::vector<ParseError> errors;
   /// Expressions cut short by a ';' (RRF113 reports them, not syntax-error): from the '{' (or the start of a
   /// meta-command expression) to the end of the code; the ';' follows after optional blanks.
@@ -101,11 +261,11 @@ struct ParsedFile {
   bool mixed_indentation = false;
 
   std::string_view text(Span s) const { return source->slice(s); }
-  const Param* param_begin(const Command& c) const { return params.data() + c.first_param; }
-  const Param* param_end(const Command& c) const { return params.data() + c.first_param + c.param_count; }
+  /// The parameters of a command, in order.
+  ParamRange params(const Command& c) const { return ParamRange(source->text(), c); }
   /// The first parameter with this letter (RRF's Seen() finds the first one).
-  const Param* find(const Command& c, char letter) const;
-  const Line& line_of(const Command& c) const { return lines[c.line]; }
+  ParamRef find(const Command& c, char letter) const;
+  Line line_of(const Command& c) const { return lines[c.line]; }
 };
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts = {});

@@ -58,12 +58,12 @@ struct NodeContext {
   const FileUnit& unit() const { return machine.unit(node().unit); }
   const ParsedFile& parsed() const { return unit().parsed; }
   /// Valid for NodeKind::Command only.
-  const Command& command() const { return parsed().commands[node().index]; }
+  Command command() const { return parsed().commands[node().index]; }
   bool is_command() const { return node().kind == NodeKind::Command; }
   bool is(char letter, int number) const {
     return is_command() && command().letter == letter && command().number == number && command().fraction < 0;
   }
-  const Param* param(char letter) const { return parsed().find(command(), letter); }
+  ParamRef param(char letter) const { return parsed().find(command(), letter); }
   Location at(Span s) const { return Location{unit().source->id(), s}; }
   /// Location of any node's command (for notes: "tool 1 is created here").
   Location where(NodeId other) const;

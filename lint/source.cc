@@ -10,7 +10,6 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
   const char* base = bytes_.data();
   const size_t n = bytes_.size();
   line_starts_.reserve(n / 32 + 1);
-  line_ends_.reserve(n / 32 + 1);
   line_starts_.push_back(0);
   const bool any_cr = std::memchr(base, '\r', n) != nullptr;
   if (!any_cr) {
@@ -20,7 +19,6 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
     while (p < end) {
       const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
       if (!nl) break;
-      line_ends_.push_back(static_cast<uint32_t>(nl - base));
       line_starts_.push_back(static_cast<uint32_t>(nl - base + 1));
       ++endings_.lf;
       p = nl + 1;
@@ -29,11 +27,9 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
     for (size_t i = 0; i < n; ++i) {
       const char c = base[i];
       if (c == '\n') {
-        line_ends_.push_back(static_cast<uint32_t>(i));
         line_starts_.push_back(static_cast<uint32_t>(i + 1));
         ++endings_.lf;
       } else if (c == '\r') {
-        line_ends_.push_back(static_cast<uint32_t>(i));
         if (i + 1 < n && base[i + 1] == '\n') {
           ++i;
           ++endings_.crlf;
@@ -44,15 +40,24 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
       }
     }
   }
-  line_ends_.push_back(static_cast<uint32_t>(n));
   // A final terminator does not start another (empty) line.
-  if (line_starts_.size() > 1 && line_starts_.back() == n) {
-    line_starts_.pop_back();
-    line_ends_.pop_back();
-  }
+  if (line_starts_.size() > 1 && line_starts_.back() == n) line_starts_.pop_back();
 }
 
-Span SourceFile::line_span(uint32_t line0) const { return Span{line_starts_[line0], line_ends_[line0]}; }
+uint32_t SourceFile::line_end(uint32_t line0) const {
+  const uint32_t start = line_starts_[line0];
+  // The next line's start, or the end of the file; then back over the terminator, if any.
+  uint32_t e = line0 + 1 < line_starts_.size() ? line_starts_[line0 + 1] : size();
+  if (e > start && bytes_[e - 1] == '\n') {
+    --e;
+    if (e > start && bytes_[e - 1] == '\r') --e;
+  } else if (e > start && bytes_[e - 1] == '\r') {
+    --e;
+  }
+  return e;
+}
+
+Span SourceFile::line_span(uint32_t line0) const { return Span{line_starts_[line0], line_end(line0)}; }
 
 uint32_t SourceFile::line_of(uint32_t offset) const {
   auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
@@ -60,7 +65,7 @@ uint32_t SourceFile::line_of(uint32_t offset) const {
 }
 
 std::string_view SourceFile::terminator(uint32_t line0) const {
-  uint32_t e = line_ends_[line0];
+  uint32_t e = line_end(line0);
   uint32_t next = line0 + 1 < line_starts_.size() ? line_starts_[line0 + 1] : size();
   return std::string_view(bytes_).substr(e, next - e);
 }
@@ -69,9 +74,10 @@ LineCol SourceFile::position(uint32_t offset) const {
   offset = std::min(offset, size());
   uint32_t line0 = line_of(offset);
   uint32_t start = line_starts_[line0];
-  uint32_t end = std::min(offset, line_ends_[line0]);
+  const uint32_t line_e = line_end(line0);
+  uint32_t end = std::min(offset, line_e);
   uint32_t col = count_code_points(std::string_view(bytes_).substr(start, end - start)) + 1;
-  if (offset > line_ends_[line0]) col += 1;  // inside the terminator: one past the line end
+  if (offset > line_e) col += 1;  // inside the terminator: one past the line end
   return LineCol{line0 + 1, col};
 }
 

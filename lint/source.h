@@ -65,8 +65,8 @@ class SourceFile {
   std::string display_;
   std::string sd_path_;
   std::string bytes_;
+  uint32_t line_end(uint32_t line0) const;  // from the next line's start: the index keeps starts only
   std::vector<uint32_t> line_starts_;
-  std::vector<uint32_t> line_ends_;
   LineEndings endings_;
 };
 

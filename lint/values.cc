@@ -81,7 +81,7 @@ bool parse_driver(std::string_view s, DriverId& out) {
 template <class T, class F>
 Val<std::vector<T>> get_list(const ParsedFile& pf, const Command& c, char letter, F parse_one) {
   Val<std::vector<T>> v;
-  const Param* p = pf.find(c, letter);
+  ParamRef p = pf.find(c, letter);
   if (!p) return v;
   v.param = p;
   if (is_unknown_value(*p)) {
@@ -146,7 +146,7 @@ std::vector<Span> list_items(const ParsedFile& pf, const Param& p) {
 
 Val<double> get_float(const ParsedFile& pf, const Command& c, char letter) {
   Val<double> v;
-  const Param* p = pf.find(c, letter);
+  ParamRef p = pf.find(c, letter);
   if (!p) return v;
   v.param = p;
   if (is_unknown_value(*p)) return v.state = VState::Unknown, v;
@@ -159,7 +159,7 @@ Val<double> get_float(const ParsedFile& pf, const Command& c, char letter) {
 
 Val<int64_t> get_int(const ParsedFile& pf, const Command& c, char letter) {
   Val<int64_t> v;
-  const Param* p = pf.find(c, letter);
+  ParamRef p = pf.find(c, letter);
   if (!p) return v;
   v.param = p;
   if (is_unknown_value(*p)) return v.state = VState::Unknown, v;
@@ -200,7 +200,7 @@ std::string unquote(std::string_view q) {
 
 Val<std::string> get_string(const ParsedFile& pf, const Command& c, char letter) {
   Val<std::string> v;
-  const Param* p = pf.find(c, letter);
+  ParamRef p = pf.find(c, letter);
   if (!p) return v;
   v.param = p;
   if (p->kind == ValueKind::Expression || (p->kind != ValueKind::String && p->has_expr)) return v.state = VState::Unknown, v;

@@ -18,7 +18,7 @@ template <class T>
 struct Val {
   VState state = VState::Absent;
   T value{};
-  const Param* param = nullptr;
+  ParamRef param;  // the parameter read (none when absent)
   bool known() const { return state == VState::Known; }
   bool absent() const { return state == VState::Absent; }
   bool present() const { return state != VState::Absent; }

@@ -103,7 +103,7 @@ void check(const FileContext& cx, Sink& out) {
     if (line.kind != LineKind::Commands) continue;
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command& c = pf.commands[i];
-      for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+      for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
         if (!lex::is_raw_text(c, *p)) scan(cx, p->value, out);
     }
   }

@@ -86,12 +86,12 @@ void check(const NodeContext& cx, Sink& out) {
   if (!s.axes_known || s.unknown_baseline) return;
   const ParsedFile& pf = cx.parsed();
   const std::string_view order = allowed_axis_letters();
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
     const char L = p->letter;
     if (L == 0 || L == 'X' || L == 'Y' || L == 'Z' || L == 'E' || order.find(L) == std::string_view::npos) continue;
     if (is_own_parameter(c, L) || s.axis_index(L) >= 0) continue;
     if (p->kind == ValueKind::String || p->kind == ValueKind::Text) continue;  // `C"nil"`: a pin, not an axis value
-    if (pf.find(c, L) != p) continue;  // only the first of duplicate letters counts
+    if (!pf.find(c, L).is(*p)) continue;  // only the first of duplicate letters counts
     const std::string axis = L >= 'a' ? fmt::format("'{}", L) : std::string(1, L);
     if (c.letter == 'G' && L == 'C') {
       const bool old = s.firmware < Version(3, 3, 0, 0, 0);

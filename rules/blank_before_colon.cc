@@ -47,7 +47,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!p->blank_before_colon || p->letter == 0) continue;
       std::vector<Span> blanks;  // each run of blanks before a ':'
       lex::for_each_plain(t, p->value, [&](uint32_t k) {

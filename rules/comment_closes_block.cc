@@ -66,7 +66,7 @@ constexpr Version kFixedIn{3, 6, 0, 1, 3};  // 3.6.0-beta.3
 struct Block {
   uint32_t indent;   // the indent of the block's lines
   MetaKind opener;   // if/elif/else/while, or None for a plain block (extra indentation)
-  const Line* head;  // the line that opened it
+  Line head;         // the line that opened it
 };
 
 bool is_code(const Line& l) {
@@ -80,31 +80,31 @@ bool conditional(MetaKind k) {
 void check(const FileContext& cx, Sink& out) {
   if (cx.target.version >= kFixedIn) return;
   const ParsedFile& pf = cx.parsed();
-  const std::vector<Line>& lines = pf.lines;
+  const LineTable& lines = pf.lines;
   std::vector<Block> open;  // blocks with indent > 0, innermost last, as the lines' indentation shows them
-  const Line* prev = nullptr;  // the previous code line
+  std::optional<Line> prev;  // the previous code line
   for (size_t i = 0; i < lines.size(); ++i) {
     const Line& line = lines[i];
     if (is_code(line)) {
       while (!open.empty() && line.indent < open.back().indent) open.pop_back();
       if (prev && line.indent > prev->indent && (open.empty() || line.indent > open.back().indent))
-        open.push_back(Block{line.indent, prev->meta, prev});
-      prev = &line;
+        open.push_back(Block{line.indent, prev->meta, *prev});
+      prev = line;
       continue;
     }
     if (line.kind != LineKind::Comment || open.empty() || !prev) continue;
     // A run of column-0 comments (blank lines may sit between them): the first one closes the blocks.
-    std::vector<const Line*> run{&line};
+    std::vector<Span> run{line.span};
     size_t j = i + 1;
     for (; j < lines.size() && !is_code(lines[j]); ++j)
-      if (lines[j].kind == LineKind::Comment) run.push_back(&lines[j]);
+      if (lines[j].kind == LineKind::Comment) run.push_back(lines[j].span);
     i = j - 1;
     if (j >= lines.size()) continue;
     const Line& next = lines[j];
 
     Fix fix{.title = "indent the comment like the block", .applicability = Applicability::Safe};
     const std::string indent(pf.text(lex::indentation(pf, *prev)));
-    for (const Line* c : run) fix.edits.push_back(Edit{cx.at(Span{c->span.begin, c->span.begin}), indent});
+    for (const Span& c : run) fix.edits.push_back(Edit{cx.at(Span{c.begin, c.begin}), indent});
     const Span at{line.span.begin, line.span.begin + 1};
     const uint32_t next_no = cx.source().position(next.span.begin).line;
 
@@ -112,14 +112,14 @@ void check(const FileContext& cx, Sink& out) {
       // The block the else/elif continues is the one opened at the else's own level.
       const Block* head = nullptr;
       for (const Block& b : open)
-        if (b.head->indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
+        if (b.head.indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
       if (!head) continue;  // an else/elif with no if is a syntax error (RRF100)
       out.report(kMeta, Severity::Error, cx.at(at),
                  fmt::format("comment at column 0 ends the open blocks on RRF {}: the '{}' on line {} then fails "
                              "with \"'{}' did not follow 'if'\" when the condition is false, which aborts the rest "
                              "of the file",
                              cx.target.version.str(), meta_keyword(next.meta), next_no, meta_keyword(next.meta)))
-          .note(cx.at(head->head->code), fmt::format("the '{}' opens here", meta_keyword(head->opener)))
+          .note(cx.at(head->head.code), fmt::format("the '{}' opens here", meta_keyword(head->opener)))
           .fix(std::move(fix));
       continue;
     }
@@ -135,7 +135,7 @@ void check(const FileContext& cx, Sink& out) {
                     meta_keyword(escaped->opener), cx.target.version.str(), next_no,
                     loop ? "run once after the loop instead of in every pass"
                          : "run even when the condition is false"));
-    r.note(cx.at(escaped->head->code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
+    r.note(cx.at(escaped->head.code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
     r.fix(std::move(fix));
   }
 }

@@ -53,7 +53,7 @@ void check(const FileContext& cx, Sink& out) {
     // Most commands repeat no letter: a bit per letter tells at once.
     uint64_t seen = 0;
     bool repeat = false;
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c) && !repeat; ++p) {
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator() && !repeat; ++p) {
       if (p->letter == 0) continue;
       const uint64_t bit = uint64_t{1} << (p->letter >= 'a' ? p->letter - 'a' + 26 : p->letter - 'A');
       repeat = (seen & bit) != 0;
@@ -77,10 +77,10 @@ void check(const FileContext& cx, Sink& out) {
     auto usable = [&](const Param& p) {
       return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) && !in_word(p);
     };
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!usable(*p)) continue;
-      const Param* first = pf.find(c, p->letter);
-      if (first == p || !usable(*first)) continue;
+      ParamRef first = pf.find(c, p->letter);
+      if (first.is(*p) || !usable(*first)) continue;
       // Report each later duplicate once: only against the first occurrence.
       const std::string name = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
       const bool same = pf.text(p->value) == pf.text(first->value);

@@ -50,7 +50,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!p->exponent_letter || p->letter == 0) continue;
       uint32_t at = 0;
       lex::for_each_plain(t, p->value, [&](uint32_t k) {

@@ -125,7 +125,7 @@ void check_e_values(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  const Param* e = pf.find(c, 'E');
+  ParamRef e = pf.find(c, 'E');
   if (!e || e->kind == ValueKind::None || is_unknown_value(*e)) return;
   if (e->kind != ValueKind::Number && e->kind != ValueKind::List) return;
   const size_t count = list_items(pf, *e).size();

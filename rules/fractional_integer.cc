@@ -90,7 +90,7 @@ void check(const FileContext& cx, Sink& out) {
     }
     const std::string_view letters = int_params(c);
     for (char letter : letters) {
-      const Param* p = pf.find(c, letter);  // RRF reads the first one
+      ParamRef p = pf.find(c, letter);  // RRF reads the first one
       if (!p || is_unknown_value(*p) || (p->kind != ValueKind::Number && p->kind != ValueKind::List)) continue;
       const std::vector<Span> items = list_items(pf, *p);
       for (size_t i = 0; i < items.size(); ++i) {

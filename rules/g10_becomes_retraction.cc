@@ -58,7 +58,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (g10::classify(pf, c, s) != g10::Form::Retract) return;
   std::string letters;
   std::vector<char> list;
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
     if (!g10::is_axis_letter(p->letter, s)) continue;
     if (!letters.empty()) letters += ", ";
     letters += g10::axis_name(p->letter);

@@ -72,8 +72,8 @@ inline ToolRef tool_ref(const ParsedFile& pf, const Command& c, const MachineSta
 /// The command of a graph node, or nullptr for Enter/Leave/ToolSelect nodes.
 struct NodeCommand {
   const ParsedFile* pf = nullptr;
-  const Command* c = nullptr;
-  explicit operator bool() const { return c != nullptr; }
+  std::optional<Command> c;
+  explicit operator bool() const { return c.has_value(); }
   bool is(char letter, int number) const { return c && c->letter == letter && c->number == number && c->fraction < 0; }
 };
 
@@ -81,7 +81,7 @@ inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) {
   const Node& n = g.nodes[id];
   if (n.kind != NodeKind::Command) return {};
   const ParsedFile& pf = m.unit(n.unit).parsed;
-  return {&pf, &pf.commands[n.index]};
+  return {&pf, pf.commands[n.index]};
 }
 
 /// Does this M563 define (create or re-create) a tool, rather than report one?
@@ -163,7 +163,7 @@ inline std::string invalid_tool_text(Version v, int n) {
 inline std::string quote(const ParsedFile& pf, const Command& c, uint32_t max_params = 3) {
   std::string out(pf.text(c.word));
   uint32_t shown = 0;
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
     if (shown == max_params) {
       out += " …";
       break;
@@ -178,7 +178,7 @@ inline std::string quote(const ParsedFile& pf, const Command& c, uint32_t max_pa
 /// "G10 P3": the command word and its P parameter.
 inline std::string quote_with_p(const ParsedFile& pf, const Command& c) {
   std::string out(pf.text(c.word));
-  if (const Param* p = pf.find(c, 'P')) out += " " + std::string(pf.text(p->span));
+  if (ParamRef p = pf.find(c, 'P')) out += " " + std::string(pf.text(p->span));
   return out;
 }
 

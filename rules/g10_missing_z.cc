@@ -62,7 +62,7 @@ bool z_only_g10(const NodeContext& cx, NodeId id) {
   if (id == kNoNode) return false;
   g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, id);
   if (!nc.is('G', 10) || !nc.pf->find(*nc.c, 'Z')) return false;
-  for (const Param* p = nc.pf->param_begin(*nc.c); p != nc.pf->param_end(*nc.c); ++p)
+  for (auto p = nc.pf->params(*nc.c).begin(); p != ParamRange::iterator(); ++p)
     if (p->letter != 'Z' && g10::is_axis_letter(p->letter, cx.state)) return false;
   return true;
 }
@@ -88,7 +88,7 @@ void check(const NodeContext& cx, Sink& out) {
     g10::NodeCommand origin = m->z.origin != kNoNode ? g10::command_at(cx.machine, cx.graph, m->z.origin)
                                                      : g10::NodeCommand{};
     if (origin.is('G', 10))
-      if (const Param* p = origin.pf->find(*origin.c, 'Z'); p && !is_unknown_value(*p) && p->kind == ValueKind::Number)
+      if (ParamRef p = origin.pf->find(*origin.c, 'Z'); p && !is_unknown_value(*p) && p->kind == ValueKind::Number)
         value = std::string(origin.pf->text(p->value));
     why = fmt::format("{}", value.empty() ? fmt::format("{:g}", m->z.value) : value);
   }

@@ -48,7 +48,7 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   auto P = get_int(pf, c, 'P');
   if (P.absent()) return;
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
     if (p->letter == 'P') continue;
     if (p->letter == 'L') {
       auto L = get_int(pf, c, 'L');

@@ -62,14 +62,15 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
   const SourceFile& src = cx.source();
   const Line& line = pf.line_of(c);
   if (line.command_count != 1) return std::nullopt;
+  const std::vector<Param> params(pf.params(c).begin(), pf.params(c).end());
   const Param *P = nullptr, *R = nullptr, *S = nullptr;
   bool others = false;
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
-    if (p->letter == 'P' || p->letter == 'R' || p->letter == 'S') {
-      const Param*& slot = p->letter == 'P' ? P : p->letter == 'R' ? R : S;
+  for (const Param& p : params) {
+    if (p.letter == 'P' || p.letter == 'R' || p.letter == 'S') {
+      const Param*& slot = p.letter == 'P' ? P : p.letter == 'R' ? R : S;
       if (slot) return std::nullopt;  // a repeated letter: RRF reads the first; leave such lines alone
-      slot = p;
-    } else if (p->letter != 'L') {
+      slot = &p;
+    } else if (p.letter != 'L') {
       others = true;
     }
   }
@@ -89,7 +90,7 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
   for (const Param* p : {R, S}) {
     if (!p) continue;
     uint32_t begin = c.word.end;
-    for (const Param* q = pf.param_begin(c); q != p; ++q) begin = q->span.end;
+    for (const Param* q = params.data(); q != p; ++q) begin = q->span.end;
     fix.edits.push_back(Edit{cx.at(Span{begin, p->span.end}), ""});
   }
   const uint32_t l0 = src.line_of(c.span.begin);

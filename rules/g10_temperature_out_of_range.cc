@@ -97,9 +97,9 @@ void check(const NodeContext& cx, Sink& out) {
                   tools::degrees(v->h->limit)));
   if (v->h->monitor_origin != kNoNode) {
     const Node& origin = cx.graph.nodes[v->h->monitor_origin];
-    const Command* oc = origin.kind == NodeKind::Command
-                            ? &cx.machine.unit(origin.unit).parsed.commands[origin.index]
-                            : nullptr;
+    const std::optional<Command> oc =
+        origin.kind == NodeKind::Command ? std::optional(cx.machine.unit(origin.unit).parsed.commands[origin.index])
+                                         : std::nullopt;
     const bool user = oc && oc->is('M', 143);
     r.note(cx.where(v->h->monitor_origin),
            user ? fmt::format("'M143' sets heater {}'s over-temperature limit here", v->heater)

@@ -47,13 +47,13 @@ M563 P0 D0 H1
 
 struct Cmd {
   const ParsedFile* pf;
-  const Command* c;
+  std::optional<Command> c;
 };
 
 Cmd cmd_at(const NodeContext& cx, NodeId i) {
   const Node& n = cx.graph.nodes[i];
   const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
-  return {&pf, &pf.commands[n.index]};
+  return {&pf, pf.commands[n.index]};
 }
 
 bool names_heater(const Cmd& k, int h) {

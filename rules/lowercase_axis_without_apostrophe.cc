@@ -61,9 +61,9 @@ void check(const FileContext& cx, Sink& out) {
     if (!c.is('M', 584)) continue;
     // A command written all in lower case means upper case throughout.
     bool upper_seen = !lex::is_lower(t[c.word.begin]);
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
       if (p->letter != 0 && t[p->span.begin] != '\'' && !lex::is_lower(t[p->span.begin])) upper_seen = true;
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) {
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (p->letter == 0 || p->kind == ValueKind::None) continue;
       const char written = t[p->span.begin];
       if (written == '\'') {

@@ -6,7 +6,7 @@
 namespace rrflint {
 
 /// The command node that caused a graph event, as a Location plus whether it sits in a conditional block.
-inline const Command& event_command(const EndContext& cx, const GraphEvent& e) {
+inline Command event_command(const EndContext& cx, const GraphEvent& e) {
   const Node& n = cx.graph.nodes[e.node];
   return cx.machine.unit(n.unit).parsed.commands[n.index];
 }
@@ -21,7 +21,7 @@ inline Location event_path_loc(const EndContext& cx, const GraphEvent& e) {
   const Node& n = cx.graph.nodes[e.node];
   const FileUnit& u = cx.machine.unit(n.unit);
   const Command& c = u.parsed.commands[n.index];
-  const Param* p = u.parsed.find(c, 'P');
+  ParamRef p = u.parsed.find(c, 'P');
   return Location{u.source->id(), p ? p->span : c.span};
 }
 

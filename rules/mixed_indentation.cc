@@ -48,24 +48,24 @@ if !move.axes[0].homed
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   bool seen_meta = false;
-  const Line* first_space = nullptr;  // the first line since the last column-0 line that indented with a space
-  const Line* first_tab = nullptr;
+  std::optional<Line> first_space;  // the first line since the last column-0 line that indented with a space
+  std::optional<Line> first_tab;
   auto mixed = [&] { return seen_meta && first_space && first_tab; };
   for (const Line& line : pf.lines) {
     // Blank lines and indented comments take no part in blocks: skip them (RRF counts their blanks too, but
     // they cannot change what a block contains).
     if (line.kind == LineKind::Blank) continue;
     if (line.indent == 0) {
-      first_space = first_tab = nullptr;
+      first_space = first_tab = std::nullopt;
     } else {
-      if (line.indent_spaces && !first_space) first_space = &line;
-      if (line.indent_tabs && !first_tab) first_tab = &line;
+      if (line.indent_spaces && !first_space) first_space = line;
+      if (line.indent_tabs && !first_tab) first_tab = line;
     }
     if (line.kind == LineKind::Meta) seen_meta = true;
     if (line.indent > 0 && mixed()) {
       const bool tab_here = line.indent_tabs;
-      const Line* other = tab_here ? first_space : first_tab;
-      if (line.indent_tabs && line.indent_spaces) other = nullptr;
+      std::optional<Line> other = tab_here ? first_space : first_tab;
+      if (line.indent_tabs && line.indent_spaces) other = std::nullopt;
       Report r = out.report(
           kMeta, cx.at(lex::indentation(pf, line)),
           fmt::format("{}: RRF counts a tab as up to 4 blanks and warns 'both space and tab characters used to "
@@ -79,7 +79,7 @@ void check(const FileContext& cx, Sink& out) {
       return;  // once per file, like RRF
     }
     // Before the first meta command RRF starts every line afresh.
-    if (!seen_meta) first_space = first_tab = nullptr;
+    if (!seen_meta) first_space = first_tab = std::nullopt;
   }
 }
 

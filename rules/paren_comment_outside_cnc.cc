@@ -55,7 +55,7 @@ bool sets_mode(const Command& c) {
 bool in_raw_text(const ParsedFile& pf, const Line& line, uint32_t off) {
   for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
     const Command& c = pf.commands[i];
-    for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p)
+    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
       if (lex::is_raw_text(c, *p) && off >= p->value.begin && off < p->value.end) return true;
   }
   return false;

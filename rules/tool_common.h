@@ -94,7 +94,7 @@ struct ToolMap {
   bool known = true;
   uint32_t bits = 0;
   std::vector<int64_t> indices;  // as written
-  const Param* param = nullptr;
+  ParamRef param;
 };
 
 inline ToolMap tool_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter) {

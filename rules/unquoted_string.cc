@@ -146,7 +146,7 @@ void check(const FileContext& cx, Sink& out) {
       // A blank before the quote of an M98 file name breaks every version; other checks need the target.
       if (!quotes_needed && sp.number != 98) continue;
       // RRF reads the first occurrence of the letter (Seen()).
-      if (const Param* p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, quotes_needed, out);
+      if (ParamRef p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, quotes_needed, out);
     }
   }
 }

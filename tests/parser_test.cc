@@ -54,7 +54,7 @@ std::string render_command(const ParsedFile& pf, const Command& c) {
   if (c.number_expr) out += "{}";
   else if (c.number != -1 || pf.text(c.word).find('-') != std::string_view::npos) out += std::to_string(c.number);
   if (c.fraction >= 0) out += "." + std::to_string(c.fraction);
-  for (const Param* p = pf.param_begin(c); p != pf.param_end(c); ++p) out += " " + render_param(pf, *p);
+  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) out += " " + render_param(pf, *p);
   return out;
 }
 
@@ -288,14 +288,14 @@ TEST_CASE("parser: parameter letters", "[parser]") {
 
   Parsed p = parse_text("G1 X1 Y2 X3\n");
   const Command& c = p.pf.commands[0];
-  const Param* x = p.pf.find(c, 'X');
+  ParamRef x = p.pf.find(c, 'X');
   REQUIRE(x);
   CHECK(text_of(p, x->value) == "1");
   CHECK(x->span == Span{3, 5});
   CHECK(p.pf.find(c, 'Z') == nullptr);
   CHECK(c.param_count == 3);
   Parsed lower = parse_text("G1 'a5\n");
-  const Param* a = lower.pf.find(lower.pf.commands[0], 'a');
+  ParamRef a = lower.pf.find(lower.pf.commands[0], 'a');
   REQUIRE(a);
   CHECK(a->span == Span{3, 6});
   CHECK(lower.pf.find(lower.pf.commands[0], 'A') == nullptr);
@@ -318,7 +318,7 @@ TEST_CASE("parser: value kinds and spans", "[parser]") {
   // Braces nest, and a string inside may hold a brace.
   CHECK(one("M291 P{\"a}\" ^ {1 + (2)}} S1") == "cmd: M291 P={\"a}\" ^ {1 + (2)}} S=1");
   Parsed p = parse_text("M291 P{\"x\"} S1\n");
-  const Param* pp = p.pf.find(p.pf.commands[0], 'P');
+  ParamRef pp = p.pf.find(p.pf.commands[0], 'P');
   REQUIRE(pp);
   CHECK(pp->kind == ValueKind::Expression);
   CHECK(pp->has_expr);

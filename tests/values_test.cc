@@ -16,7 +16,7 @@ namespace {
 struct One {
   std::unique_ptr<SourceFile> source;
   ParsedFile pf;
-  const Command& cmd() const { return pf.commands.at(0); }
+  Command cmd() const { return pf.commands[0]; }
 };
 
 One cmd(std::string text) {
@@ -39,7 +39,7 @@ TEST_CASE("values: get_int", "[values]") {
   auto p = get_int(o.pf, o.cmd(), 'P');
   CHECK(p.state == VState::Known);
   CHECK(p.value == 3);
-  CHECK(p.param == o.pf.find(o.cmd(), 'P'));
+  CHECK(p.param.is(*o.pf.find(o.cmd(), 'P')));
   CHECK(get_int(o.pf, o.cmd(), 'D').value == -1);
   CHECK(get_int(o.pf, o.cmd(), 'H').value == 2);
   // Reading stops at '.': `S0.5` is 0, like StrToI32.
