@@ -131,7 +131,6 @@ class JobReader : public FileReader {
   const Job& job_;
   std::unique_ptr<DiskReader> disk_;
   std::string lone_sd_, lone_display_;
-  std::optional<std::string> lone_bytes_;
   std::map<std::string, std::string> overlay_;
 };
 

@@ -241,7 +241,6 @@ JobReader::JobReader(const Job& job) : job_(job) {
   if (name.empty()) name = "stdin.g";
   lone_sd_ = to_lower(name) == "config.g" ? "/sys/config.g" : "/sys/" + name;
   lone_display_ = job.standalone.empty() ? name : job.standalone.string();
-  if (job.stdin_bytes) lone_bytes_ = *job.stdin_bytes;
 }
 
 ReadResult JobReader::read(std::string_view sd_path) {
@@ -251,7 +250,10 @@ ReadResult JobReader::read(std::string_view sd_path) {
   } else if (to_lower(sd_path) == to_lower(lone_sd_)) {
     r.display = lone_display_;
     r.sd_path = lone_sd_;
-    if (!lone_bytes_) {
+    if (job_.stdin_bytes) {
+      r.bytes = *job_.stdin_bytes;
+    } else {
+      // Read afresh (a lint reads each file once): keeping a copy here would double the memory for the file.
       std::string err;
       auto b = read_file(job_.standalone, &err);
       if (!b) {
@@ -259,10 +261,9 @@ ReadResult JobReader::read(std::string_view sd_path) {
         r.error = err;
         return r;
       }
-      lone_bytes_ = std::move(*b);
+      r.bytes = std::move(*b);
     }
     r.status = ReadResult::Status::Ok;
-    r.bytes = *lone_bytes_;
   } else {
     return r;  // a lone file has no neighbours
   }

@@ -21,6 +21,18 @@ std::string_view call_kind_name(CallKind k) {
   return "?";
 }
 
+void NodeTable::push_back(const Node& n) {
+  if (n.kind == NodeKind::Command && n.index < kMaybe && n.call_site == kNoNode) {
+    if (frames_.empty() || frames_.back().call != n.call || frames_.back().depth != n.depth ||
+        frames_.back().unit != n.unit || frames_.back().enter != n.enter)
+      frames_.push_back(Frame{n.call, n.depth, n.unit, n.enter});
+    recs_.push_back(Rec{static_cast<uint32_t>(frames_.size() - 1), n.index | (n.maybe ? kMaybe : 0)});
+    return;
+  }
+  full_.push_back(n);
+  recs_.push_back(Rec{static_cast<uint32_t>(full_.size() - 1), kFull});
+}
+
 namespace {
 
 class Builder {

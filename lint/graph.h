@@ -52,8 +52,42 @@ struct Segment {
   bool boot = false;          // the boot sequence (config.g …) rather than a standalone entry
 };
 
+/// The nodes of a graph, in execution order. A command node is stored in 8 bytes (its command index and the
+/// file run it belongs to); elements are decoded into `Node` values on access, so bind them as `const Node&`
+/// and keep NodeIds, not pointers.
+class NodeTable {
+ public:
+  Node operator[](NodeId id) const {
+    const Rec& r = recs_[id];
+    if (r.b == kFull) return full_[r.a];
+    const Frame& f = frames_[r.a];
+    return Node{NodeKind::Command, f.call, (r.b & kMaybe) != 0, f.depth, f.unit, r.b & ~kMaybe, f.enter, kNoNode};
+  }
+  size_t size() const { return recs_.size(); }
+  bool empty() const { return recs_.empty(); }
+  DecodingIterator<NodeTable, Node> begin() const { return {this, 0}; }
+  DecodingIterator<NodeTable, Node> end() const { return {this, size()}; }
+  void push_back(const Node& n);
+
+ private:
+  static constexpr uint32_t kFull = UINT32_MAX, kMaybe = 1u << 31;
+  struct Rec {
+    uint32_t a;  // command: the frame; otherwise an index into full_
+    uint32_t b;  // command: index | kMaybe; otherwise kFull
+  };
+  struct Frame {  // what the command nodes of one stretch of a file run share
+    CallKind call;
+    uint16_t depth;
+    uint32_t unit;
+    NodeId enter;
+  };
+  std::vector<Rec> recs_;
+  std::vector<Frame> frames_;
+  std::vector<Node> full_;
+};
+
 struct Graph {
-  std::vector<Node> nodes;
+  NodeTable nodes;
   std::vector<Segment> segments;
   std::vector<GraphEvent> events;
   bool truncated = false;  // stopped at the node limit

@@ -1,5 +1,6 @@
 #include "parser.h"
 
+#include <atomic>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -28,26 +29,6 @@ bool unlettered_string(const Command& c) {
   return c.letter == 'M' && c.fraction < 0 &&
          (c.number == 117 || c.number == 23 || c.number == 28 || c.number == 30 || c.number == 32 || c.number == 36);
 }
-
-enum LineFlag : uint8_t {
-  kIndentTabs = 1,
-  kIndentSpaces = 2,
-  kLineNumber = 4,
-  kChecksum = 8,
-  kConditional = 16,
-  kInLoop = 32,
-  kAfterNul = 64,
-  kCutByDel = 128,  // a 0x7F byte ended the line early
-};
-
-enum CommandBits : uint8_t {
-  kLetterMask = 3,  // 0 G, 1 M, 2 T
-  kNumberExpr = 4,
-  kHasNumber = 8,
-  kCnc = 16,
-  kAnyExponent = 32,
-  kAnyBlankColon = 64,
-};
 
 }  // namespace
 
@@ -255,30 +236,15 @@ void CommandTable::add(const Command& c) {
   if (wl >= 255) long_words_[i] = c.word.end;
   r.param_count = static_cast<uint8_t>(c.param_count < 255 ? c.param_count : 255);
   if (c.param_count >= 255) big_counts_[i] = c.param_count;
-  r.bits = static_cast<uint8_t>((c.letter == 'G' ? 0 : c.letter == 'M' ? 1 : 2) | (c.number_expr ? kNumberExpr : 0) |
-                                (c.has_number ? kHasNumber : 0) | (c.cnc ? kCnc : 0) |
-                                (c.any_exponent ? kAnyExponent : 0) | (c.any_blank_before_colon ? kAnyBlankColon : 0));
+  r.bits = static_cast<uint8_t>((c.letter == 'G' ? 0 : c.letter == 'M' ? 1 : 2) | (c.number_expr ? detail::kNumberExpr : 0) |
+                                (c.has_number ? detail::kHasNumber : 0) | (c.cnc ? detail::kCnc : 0) |
+                                (c.any_exponent ? detail::kAnyExponent : 0) | (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
+                                (c.any_repeated_letter ? detail::kAnyRepeat : 0));
   recs_.push_back(r);
 }
 
-Command CommandTable::operator[](size_t i) const {
-  const detail::CommandRec& r = recs_[i];
-  Command c;
-  c.span = Span{r.begin, r.end};
-  c.word = Span{r.begin, r.word_len < 255 ? r.begin + r.word_len : long_words_.at(static_cast<uint32_t>(i))};
-  const unsigned l = r.bits & kLetterMask;
-  c.letter = l == 0 ? 'G' : l == 1 ? 'M' : 'T';
-  c.number = r.number;
-  c.fraction = r.fraction;
-  c.number_expr = r.bits & kNumberExpr;
-  c.has_number = r.bits & kHasNumber;
-  c.cnc = r.bits & kCnc;
-  c.any_exponent = r.bits & kAnyExponent;
-  c.any_blank_before_colon = r.bits & kAnyBlankColon;
-  c.line = r.line;
-  c.param_count = r.param_count < 255 ? r.param_count : big_counts_.at(static_cast<uint32_t>(i));
-  return c;
-}
+uint32_t CommandTable::long_word_end(size_t i) const { return long_words_.at(static_cast<uint32_t>(i)); }
+uint32_t CommandTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }
 
 void LineTable::add(const Line& l) {
   detail::LineRec r;
@@ -295,51 +261,16 @@ void LineTable::add(const Line& l) {
   r.stored_length = static_cast<uint16_t>(l.stored_length < 65535 ? l.stored_length : 65535);
   r.command_count = static_cast<uint16_t>(l.command_count < 65535 ? l.command_count : 65535);
   if (l.command_count >= 65535) big_counts_[i] = l.command_count;
-  r.kind_meta = static_cast<uint8_t>(static_cast<unsigned>(l.kind) | (static_cast<unsigned>(l.meta) << 3));
-  r.flags = static_cast<uint8_t>((l.indent_tabs ? kIndentTabs : 0) | (l.indent_spaces ? kIndentSpaces : 0) |
-                                 (l.line_number ? kLineNumber : 0) | (l.checksum ? kChecksum : 0) |
-                                 (l.conditional ? kConditional : 0) | (l.in_loop ? kInLoop : 0) |
-                                 (l.after_nul ? kAfterNul : 0));
+  r.kind_meta = static_cast<uint8_t>(static_cast<unsigned>(l.kind) | (static_cast<unsigned>(l.meta) << 3) |
+                                     (l.comment.empty() ? 0 : 0x80));
+  r.flags = static_cast<uint8_t>((l.indent_tabs ? detail::kIndentTabs : 0) | (l.indent_spaces ? detail::kIndentSpaces : 0) |
+                                 (l.line_number ? detail::kLineNumber : 0) | (l.checksum ? detail::kChecksum : 0) |
+                                 (l.conditional ? detail::kConditional : 0) | (l.in_loop ? detail::kInLoop : 0) |
+                                 (l.after_nul ? detail::kAfterNul : 0));
   recs_.push_back(r);
 }
 
-Line LineTable::operator[](size_t i) const {
-  const detail::LineRec& r = recs_[i];
-  const std::string_view t = source_->text();
-  Line l;
-  l.span = spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i];
-  l.code = Span{r.code_begin, r.code_end};
-  l.kind = static_cast<LineKind>(r.kind_meta & 7);
-  l.meta = static_cast<MetaKind>(r.kind_meta >> 3);
-  l.indent = r.indent;
-  l.stored_length = r.stored_length;
-  l.command_count = r.command_count < 65535 ? r.command_count : big_counts_.at(static_cast<uint32_t>(i));
-  if (l.kind == LineKind::Meta) {
-    l.meta_arg = metas_[r.first].arg;
-    l.meta_name = metas_[r.first].name;
-  } else if (l.kind == LineKind::Commands || l.kind == LineKind::Bad) {
-    l.first_command = r.first;
-  }
-  l.indent_tabs = r.flags & kIndentTabs;
-  l.indent_spaces = r.flags & kIndentSpaces;
-  l.line_number = r.flags & kLineNumber;
-  l.checksum = r.flags & kChecksum;
-  l.conditional = r.flags & kConditional;
-  l.in_loop = r.flags & kInLoop;
-  l.after_nul = r.flags & kAfterNul;
-  // The comment: after the code (and a checksum), or the whole line after its indentation when it has no code.
-  uint32_t e = l.span.end;
-  if (r.flags & kCutByDel) {
-    const void* del = std::memchr(t.data() + l.span.begin, 0x7f, l.span.end - l.span.begin);
-    if (del) e = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
-  }
-  uint32_t q = (r.code_begin == 0 && r.code_end == 0) ? l.span.begin : r.code_end;
-  while (q < e && is_blank(t[q])) ++q;
-  if (q < e && t[q] == '*' && l.checksum)
-    while (q < e && t[q] != ';') ++q;
-  if (q < e && t[q] == ';') l.comment = Span{q, e};
-  return l;
-}
+uint32_t LineTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }
 
 // ---- The line parser ----
 
@@ -356,7 +287,7 @@ class LineParser {
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
   void add_line(const Line& line, bool cut_by_del) {
     out_.lines.add(line);
-    if (cut_by_del) out_.lines.recs_.back().flags |= kCutByDel;
+    if (cut_by_del) out_.lines.recs_.back().flags |= detail::kCutByDel;
   }
 
   ParsedFile& out_;
@@ -658,9 +589,17 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
     }
     // The parameters are lexed here for their errors and counted; ParamRange lexes them again on demand.
     Param param;
-    if (lex_.first_param(cmd, p, e, param)) ++cmd.param_count;
-    while (lex_.next_param(cmd, p, e, param)) {
+    uint64_t letters = 0;  // a bit per letter seen: 'A'..'Z', then 'a'..'z'
+    auto count = [&] {
       ++cmd.param_count;
+      if (param.letter == 0) return;
+      const uint64_t bit = uint64_t{1} << (param.letter >= 'a' ? param.letter - 'a' + 26 : param.letter - 'A');
+      cmd.any_repeated_letter = cmd.any_repeated_letter || (letters & bit);
+      letters |= bit;
+    };
+    if (lex_.first_param(cmd, p, e, param)) count();
+    while (lex_.next_param(cmd, p, e, param)) {
+      count();
       cmd.any_exponent = cmd.any_exponent || param.exponent_letter;
       cmd.any_blank_before_colon = cmd.any_blank_before_colon || param.blank_before_colon;
     }
@@ -688,20 +627,20 @@ void compute_blocks(ParsedFile& pf) {
   bool saw_tabs = false, saw_spaces = false;
   for (detail::LineRec& line : pf.lines.recs_) {
     const auto kind = static_cast<LineKind>(line.kind_meta & 7);
-    const auto meta = static_cast<MetaKind>(line.kind_meta >> 3);
+    const auto meta = static_cast<MetaKind>((line.kind_meta >> 3) & 15);
     if (kind != LineKind::Commands && kind != LineKind::Meta && kind != LineKind::Bad) continue;
     while (stack.size() > 1 && line.indent < stack.back().indent) stack.pop_back();
     if (line.indent > stack.back().indent) {
       const bool opener = prev_meta == MetaKind::If || prev_meta == MetaKind::Elif || prev_meta == MetaKind::Else ||
                           prev_meta == MetaKind::While;
       stack.push_back({line.indent, opener ? prev_meta : MetaKind::None, MetaKind::None});
-      if (line.flags & kIndentTabs) saw_tabs = true;
-      if (line.flags & kIndentSpaces) saw_spaces = true;
+      if (line.flags & detail::kIndentTabs) saw_tabs = true;
+      if (line.flags & detail::kIndentSpaces) saw_spaces = true;
     }
     for (size_t k = 1; k < stack.size(); ++k) {
       const MetaKind kk = stack[k].kind;
-      if (kk == MetaKind::If || kk == MetaKind::Elif || kk == MetaKind::Else) line.flags |= kConditional;
-      if (kk == MetaKind::While) line.flags |= kInLoop;
+      if (kk == MetaKind::If || kk == MetaKind::Elif || kk == MetaKind::Else) line.flags |= detail::kConditional;
+      if (kk == MetaKind::While) line.flags |= detail::kInLoop;
     }
     const Span code{line.code_begin, line.code_end};
     if (meta == MetaKind::Else || meta == MetaKind::Elif) {
@@ -709,7 +648,7 @@ void compute_blocks(ParsedFile& pf) {
       if (last != MetaKind::If && last != MetaKind::Elif)
         pf.errors.push_back({code, fmt::format("'{}' did not follow 'if' at the same indentation", meta_keyword(meta))});
     }
-    if ((meta == MetaKind::Break || meta == MetaKind::Continue) && !(line.flags & kInLoop))
+    if ((meta == MetaKind::Break || meta == MetaKind::Continue) && !(line.flags & detail::kInLoop))
       pf.errors.push_back({code, fmt::format("'{}' was not inside a loop", meta_keyword(meta))});
     stack.back().last = meta;
     prev_meta = meta;
@@ -750,13 +689,27 @@ ParamRange::iterator& ParamRange::iterator::operator++() {
 }
 
 ParamRef ParsedFile::find(const Command& c, char letter) const {
-  for (const Param& p : params(c))
+  // The model and the rules ask one command for several letters in a row (M584 asks for every axis letter):
+  // the parameters of the last command asked about are kept, per thread.
+  thread_local struct {
+    uint64_t serial = 0;  // ParsedFile::serial: unique per parse, so a new parse never meets a stale entry
+    Span span;
+    std::vector<Param> params;
+  } last;
+  if (last.serial != serial || last.span != c.span || serial == 0) {
+    last.params.assign(params(c).begin(), params(c).end());
+    last.serial = serial;
+    last.span = c.span;
+  }
+  for (const Param& p : last.params)
     if (p.letter == letter) return ParamRef(p);
   return ParamRef();
 }
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
+  static std::atomic<uint64_t> serials{0};
   ParsedFile pf;
+  pf.serial = ++serials;
   pf.source = &file;
   pf.lines.source_ = &file;
   const std::string_view t = file.text();

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <compare>
+#include <cstring>
 #include <cstdint>
 #include <iterator>
 #include <map>
@@ -71,6 +72,7 @@ struct Command {
   bool cnc = false;          // parsed in CNC mode: `( )` is a comment inside it
   bool any_exponent = false;        // some parameter swallowed an E after a digit (Param::exponent_letter)
   bool any_blank_before_colon = false;  // some parameter has Param::blank_before_colon
+  bool any_repeated_letter = false;     // two parameters have the same letter
   uint32_t line = 0;         // index into ParsedFile::lines
   uint32_t param_count = 0;
   bool is(char l, int32_t n, int8_t f = -1) const { return letter == l && number == n && fraction == f; }
@@ -119,6 +121,27 @@ struct ParseOptions {
 
 namespace detail {
 
+enum LineFlag : uint8_t {
+  kIndentTabs = 1,
+  kIndentSpaces = 2,
+  kLineNumber = 4,
+  kChecksum = 8,
+  kConditional = 16,
+  kInLoop = 32,
+  kAfterNul = 64,
+  kCutByDel = 128,  // a 0x7F byte ended the line early
+};
+
+enum CommandBits : uint8_t {
+  kLetterMask = 3,  // 0 G, 1 M, 2 T
+  kNumberExpr = 4,
+  kHasNumber = 8,
+  kCnc = 16,
+  kAnyExponent = 32,
+  kAnyBlankColon = 64,
+  kAnyRepeat = 128,
+};
+
 // The stored form of a line: 20 bytes. Spans, the comment and the meta-command parts are recovered on decoding.
 struct LineRec {
   uint32_t code_begin = 0, code_end = 0;
@@ -126,7 +149,7 @@ struct LineRec {
   uint16_t indent = 0;       // saturated
   uint16_t stored_length = 0;  // saturated
   uint16_t command_count = 0;  // saturated: the exact count is then in LineTable::big_counts_
-  uint8_t kind_meta = 0;     // LineKind (3 bits) | MetaKind << 3
+  uint8_t kind_meta = 0;     // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
   uint8_t flags = 0;         // LineFlag bits
 };
 
@@ -186,6 +209,8 @@ class CommandTable {
   friend struct ParsedFile;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   void add(const Command& c);
+  uint32_t long_word_end(size_t i) const;
+  uint32_t big_count(size_t i) const;
   std::vector<detail::CommandRec> recs_;
   std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words over 255 bytes
   std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
@@ -206,6 +231,7 @@ class LineTable {
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void compute_blocks(ParsedFile&);
   void add(const Line& l);
+  uint32_t big_count(size_t i) const;
   struct MetaRec {
     Span arg, name;
   };
@@ -259,6 +285,7 @@ struct ParsedFile {
   /// meta-command expression) to the end of the code; the ';' follows after optional blanks.
   std::vector<Span> semicolon_cuts;
   bool mixed_indentation = false;
+  uint64_t serial = 0;  // unique per parse (keys find()'s cache)
 
   std::string_view text(Span s) const { return source->slice(s); }
   /// The parameters of a command, in order.
@@ -267,6 +294,65 @@ struct ParsedFile {
   ParamRef find(const Command& c, char letter) const;
   Line line_of(const Command& c) const { return lines[c.line]; }
 };
+
+inline Command CommandTable::operator[](size_t i) const {
+  const detail::CommandRec& r = recs_[i];
+  Command c;
+  c.span = Span{r.begin, r.end};
+  c.word = Span{r.begin, r.word_len < 255 ? r.begin + r.word_len : long_word_end(i)};
+  const unsigned l = r.bits & detail::kLetterMask;
+  c.letter = l == 0 ? 'G' : l == 1 ? 'M' : 'T';
+  c.number = r.number;
+  c.fraction = r.fraction;
+  c.number_expr = r.bits & detail::kNumberExpr;
+  c.has_number = r.bits & detail::kHasNumber;
+  c.cnc = r.bits & detail::kCnc;
+  c.any_exponent = r.bits & detail::kAnyExponent;
+  c.any_blank_before_colon = r.bits & detail::kAnyBlankColon;
+  c.any_repeated_letter = r.bits & detail::kAnyRepeat;
+  c.line = r.line;
+  c.param_count = r.param_count < 255 ? r.param_count : big_count(i);
+  return c;
+}
+
+inline Line LineTable::operator[](size_t i) const {
+  const detail::LineRec& r = recs_[i];
+  const std::string_view t = source_->text();
+  Line l;
+  l.span = spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i];
+  l.code = Span{r.code_begin, r.code_end};
+  l.kind = static_cast<LineKind>(r.kind_meta & 7);
+  l.meta = static_cast<MetaKind>((r.kind_meta >> 3) & 15);
+  l.indent = r.indent;
+  l.stored_length = r.stored_length;
+  l.command_count = r.command_count < 65535 ? r.command_count : big_count(i);
+  if (l.kind == LineKind::Meta) {
+    l.meta_arg = metas_[r.first].arg;
+    l.meta_name = metas_[r.first].name;
+  } else if (l.kind == LineKind::Commands || l.kind == LineKind::Bad) {
+    l.first_command = r.first;
+  }
+  l.indent_tabs = r.flags & detail::kIndentTabs;
+  l.indent_spaces = r.flags & detail::kIndentSpaces;
+  l.line_number = r.flags & detail::kLineNumber;
+  l.checksum = r.flags & detail::kChecksum;
+  l.conditional = r.flags & detail::kConditional;
+  l.in_loop = r.flags & detail::kInLoop;
+  l.after_nul = r.flags & detail::kAfterNul;
+  // The comment: after the code (and a checksum), or the whole line after its indentation when it has no code.
+  if (!(r.kind_meta & 0x80)) return l;
+  uint32_t e = l.span.end;
+  if (r.flags & detail::kCutByDel) {
+    const void* del = std::memchr(t.data() + l.span.begin, 0x7f, l.span.end - l.span.begin);
+    if (del) e = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
+  }
+  uint32_t q = (r.code_begin == 0 && r.code_end == 0) ? l.span.begin : r.code_end;
+  while (q < e && (t[q] == ' ' || t[q] == '\t')) ++q;
+  if (q < e && t[q] == '*' && l.checksum)
+    while (q < e && t[q] != ';') ++q;
+  if (q < e && t[q] == ';') l.comment = Span{q, e};
+  return l;
+}
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts = {});
 

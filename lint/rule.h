@@ -54,7 +54,7 @@ struct NodeContext {
   NodeId id;
   int runs;  // 2 = certainly runs, 1 = maybe (conditional), node effects are then unknown
 
-  const Node& node() const { return graph.nodes[id]; }
+  Node node() const { return graph.nodes[id]; }
   const FileUnit& unit() const { return machine.unit(node().unit); }
   const ParsedFile& parsed() const { return unit().parsed; }
   /// Valid for NodeKind::Command only.

@@ -44,21 +44,6 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
   if (line_starts_.size() > 1 && line_starts_.back() == n) line_starts_.pop_back();
 }
 
-uint32_t SourceFile::line_end(uint32_t line0) const {
-  const uint32_t start = line_starts_[line0];
-  // The next line's start, or the end of the file; then back over the terminator, if any.
-  uint32_t e = line0 + 1 < line_starts_.size() ? line_starts_[line0 + 1] : size();
-  if (e > start && bytes_[e - 1] == '\n') {
-    --e;
-    if (e > start && bytes_[e - 1] == '\r') --e;
-  } else if (e > start && bytes_[e - 1] == '\r') {
-    --e;
-  }
-  return e;
-}
-
-Span SourceFile::line_span(uint32_t line0) const { return Span{line_starts_[line0], line_end(line0)}; }
-
 uint32_t SourceFile::line_of(uint32_t offset) const {
   auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
   return static_cast<uint32_t>(it - line_starts_.begin()) - 1;

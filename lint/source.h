@@ -70,6 +70,21 @@ class SourceFile {
   LineEndings endings_;
 };
 
+inline uint32_t SourceFile::line_end(uint32_t line0) const {
+  const uint32_t start = line_starts_[line0];
+  // The next line's start, or the end of the file; then back over the terminator, if any.
+  uint32_t e = line0 + 1 < line_starts_.size() ? line_starts_[line0 + 1] : size();
+  if (e > start && bytes_[e - 1] == '\n') {
+    --e;
+    if (e > start && bytes_[e - 1] == '\r') --e;
+  } else if (e > start && bytes_[e - 1] == '\r') {
+    --e;
+  }
+  return e;
+}
+
+inline Span SourceFile::line_span(uint32_t line0) const { return Span{line_starts_[line0], line_end(line0)}; }
+
 /// Counts code points in `s` the way columns are reported (invalid bytes count one each).
 uint32_t count_code_points(std::string_view s);
 

@@ -25,8 +25,12 @@ bool ieq(std::string_view a, std::string_view b) { return a.size() == b.size() &
 std::vector<bool> code_lines(const ParsedFile& pf) {
   const SourceFile& f = *pf.source;
   std::vector<bool> has(f.line_count(), false);
-  for (const Line& l : pf.lines)
-    if (!l.code.empty() && f.line_count() > 0) has[f.line_of(l.code.begin)] = true;
+  // Logical lines are editor lines, except that a NUL byte splits one: walk both in step.
+  uint32_t editor = 0;
+  for (const Line& l : pf.lines) {
+    while (editor + 1 < f.line_count() && f.line_span(editor + 1).begin <= l.span.begin) ++editor;
+    if (!l.code.empty()) has[editor] = true;
+  }
   return has;
 }
 
@@ -181,6 +185,7 @@ std::vector<Directive> parse_directives(const ParsedFile& pf) {
     if (line.comment.empty()) continue;
     if (auto d = parse_comment(pf, line)) out.push_back(std::move(*d));
   }
+  if (out.empty()) return out;
   const std::vector<bool> has_code = code_lines(pf);
   const uint32_t last = f.line_count() - 1;
   // Open ranges, in order, as (directive, entry) indices.

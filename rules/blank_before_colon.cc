@@ -47,6 +47,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
+    if (!c.any_blank_before_colon) continue;
     for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!p->blank_before_colon || p->letter == 0) continue;
       std::vector<Span> blanks;  // each run of blanks before a ':'

@@ -49,17 +49,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
-    if (c.param_count < 2) continue;
-    // Most commands repeat no letter: a bit per letter tells at once.
-    uint64_t seen = 0;
-    bool repeat = false;
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator() && !repeat; ++p) {
-      if (p->letter == 0) continue;
-      const uint64_t bit = uint64_t{1} << (p->letter >= 'a' ? p->letter - 'a' + 26 : p->letter - 'A');
-      repeat = (seen & bit) != 0;
-      seen |= bit;
-    }
-    if (!repeat) continue;
+    if (!c.any_repeated_letter) continue;  // most commands repeat no letter
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
     uint32_t stop = c.span.end;
     if (lex::contains(t, c.span, '(')) lex::for_each_plain(t, c.span, [&](uint32_t k) {

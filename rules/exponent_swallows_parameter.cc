@@ -50,6 +50,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (const Command& c : pf.commands) {
+    if (!c.any_exponent) continue;
     for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!p->exponent_letter || p->letter == 0) continue;
       uint32_t at = 0;

@@ -13,8 +13,9 @@ namespace {
 std::string where(const MachineResult& r, const SourceManager& sm, NodeId id) {
   if (id == kNoNode) return "default";
   const Graph& g = r.graph;
-  const Node* n = &g.nodes[id];
-  while (n->kind != NodeKind::Command && n->call_site != kNoNode) n = &g.nodes[n->call_site];
+  Node node = g.nodes[id];
+  while (node.kind != NodeKind::Command && node.call_site != kNoNode) node = g.nodes[node.call_site];
+  const Node* n = &node;
   const FileUnit& u = r.machine->unit(n->unit);
   uint32_t off = n->kind == NodeKind::Command ? u.parsed.commands[n->index].span.begin : 0;
   LineCol lc = sm.get(u.source->id()).position(off);
