@@ -1,15 +1,33 @@
 // FileReaders over the real file system, used by the front ends (never by the core).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "project.h"
 
 namespace rrflint {
+
+/// One entry of a folder listing. Symbolic links are followed to tell a file from a folder, but only a real
+/// folder is `Dir`: walks do not descend into linked folders.
+struct DirEntry {
+  enum class Kind : uint8_t { File, Dir, LinkedDir, Other };  // File: a regular file (or a link to one)
+  std::string name;
+  Kind kind = Kind::Other;
+};
+/// The entries of a folder (without "." and ".."), in the file system's order; empty when it cannot be read.
+std::vector<DirEntry> list_dir(const std::string& dir);
+/// `dir` + "/" + `name`, without doubling the slash of the root folder.
+std::string join_path(const std::string& dir, std::string_view name);
+/// The absolute, lexically normal form of a path, without a trailing slash (but "/" for the root).
+std::string absolute_normal(const std::filesystem::path& p);
+/// `abs` relative to `base` ("" when equal), if it lies at or below it. Both absolute and lexically normal.
+std::optional<std::string> path_below(std::string_view abs, std::string_view base);
 
 /// Maps SD paths onto a folder: "/sys/…" onto `sys_dir`, "/<other>/…" onto `root/<other>`.
 /// Lookups fall back to a case-insensitive match, as the SD card's FAT file system would.
@@ -26,18 +44,24 @@ class DiskReader : public FileReader {
   void overlay(std::string sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
 
  private:
+  // A folder's entries and a case-insensitive index of them (the first of several names that differ in case).
+  struct Listing {
+    std::vector<DirEntry> entries;
+    std::unordered_map<std::string, size_t> by_lower;
+  };
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
-  // Case-insensitive child lookup, with each folder listed once (a card asks for many missing tool macros).
-  std::optional<std::filesystem::path> child(const std::filesystem::path& dir, const std::string& name) const;
+  // Each folder is listed once (a card asks for many missing tool macros).
+  const Listing& listing(const std::string& dir) const;
   // locate() that also returns the SD path spelled as the files on disk are.
-  std::optional<std::filesystem::path> locate_spelled(std::string_view sd_path, std::string* spelled) const;
-  mutable std::map<std::string, std::map<std::string, std::filesystem::path>> listings_;
-  std::filesystem::path root_, sys_, base_;
+  std::optional<std::string> locate_spelled(std::string_view sd_path, std::string* spelled) const;
+  void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
+  mutable std::unordered_map<std::string, Listing> listings_;
+  std::string root_, sys_, base_;  // absolute and lexically normal
   std::map<std::string, std::string> overlay_;
 };
 
 /// Reads a whole file; nullopt with `error` set on failure.
-std::optional<std::string> read_file(const std::filesystem::path& p, std::string* error);
+std::optional<std::string> read_file(const std::string& path, std::string* error);
 
 /// Where an SD card starts for a path: a folder with sys/config.g, or a sys-like folder holding config.g.
 struct CardLocation {
