@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lint/config.h"
@@ -103,18 +104,33 @@ struct PlanOptions {
 void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
           bool& io_error);
 
-/// Is this file ignored by git (or, without git, by the .gitignore files above it)?
+/// Is this file ignored by git (or, without git, by the .gitignore files above it)? Paths are absolute and
+/// lexically normal (absolute_normal).
 class GitIgnore {
  public:
   /// Answers for many files at once (one `git check-ignore` per repository).
-  void prefetch(const std::vector<fs::path>& files);
-  bool ignored(const fs::path& abs);
+  void prefetch(const std::vector<std::string>& files);
+  bool ignored(const std::string& abs);
 
  private:
-  std::map<std::string, bool> cache_;
-  std::map<std::string, bool> dir_cache_;  // folder -> ignored (fallback matcher)
-  std::map<std::string, std::vector<std::pair<std::string, bool>>> patterns_;  // folder -> (pattern, negated)
-  bool fallback_ignored(const fs::path& abs);
+  struct Pattern {
+    std::string glob;
+    bool negated = false, dir_only = false, anchored = false;
+  };
+  // What the fallback matcher knows of a folder, worked out once per folder (files share their folders).
+  struct Folder {
+    std::vector<std::string> chain;  // the folders whose .gitignore applies, from the repository top down to this one
+    bool patterns = false;           // one of them has patterns
+    bool ignored = false;            // this folder, or one above it below the top, is ignored
+  };
+  const std::vector<Pattern>& patterns(const std::string& dir);
+  const Folder& folder(const std::string& dir);
+  bool verdict(const std::string& path, bool is_dir, const std::vector<std::string>& chain);
+  bool fallback_ignored(const std::string& abs);
+  std::unordered_map<std::string, bool> cache_;  // file -> git check-ignore's answer
+  std::set<std::string> no_git_;                 // repositories where git check-ignore gave no answer
+  std::unordered_map<std::string, std::vector<Pattern>> patterns_;  // folder -> its .gitignore
+  std::unordered_map<std::string, Folder> folders_;
 };
 
 /// The FileReader of a job, with in-memory replacements (fixed text) on top.
@@ -124,8 +140,8 @@ class JobReader : public FileReader {
   ReadResult read(std::string_view sd_path) override;
   std::vector<std::string> list(std::string_view sd_dir) override;
   void set(const std::string& sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
-  /// The file on disk behind an SD path (nullopt for stdin or unknown).
-  std::optional<fs::path> disk_path(std::string_view sd_path) const;
+  /// The file on disk behind an SD path (nullopt for stdin or unknown); absolute and normal in a card.
+  std::optional<std::string> disk_path(std::string_view sd_path) const;
 
  private:
   const Job& job_;

@@ -12,25 +12,35 @@
 namespace fs = std::filesystem;
 
 namespace rrflint {
-namespace {
+const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_view name,
+                           std::optional<DirEntry::Kind> kind) {
+  auto wanted = [&](const DirEntry& e) { return !kind || e.kind == *kind; };
+  for (const DirEntry& e : entries)
+    if (e.name == name && wanted(e)) return &e;
+  const std::string lower = to_lower(name);
+  for (const DirEntry& e : entries)
+    if (wanted(e) && to_lower(e.name) == lower) return &e;
+  return nullptr;
+}
 
-std::optional<fs::path> find_ci(const fs::path& dir, const std::string& name) {
+std::optional<std::string> sd_path_in(const CardLocation& card, const fs::path& p) {
   std::error_code ec;
-  fs::path exact = dir / name;
-  if (fs::exists(exact, ec)) return exact;
-  const std::string want = to_lower(name);
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (to_lower(it->path().filename().string()) == want) return it->path();
+  const fs::path abs = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  for (const auto& [base, prefix] : {std::pair{&card.sys_dir, "/sys"}, std::pair{&card.root, ""}}) {
+    const fs::path b = fs::weakly_canonical(fs::absolute(*base, ec), ec);
+    auto rel = abs.lexically_relative(b);
+    if (rel.empty() || rel.native().starts_with("..")) continue;
+    std::string r = rel.generic_string();
+    if (r == ".") r.clear();
+    return prefix + ("/" + r);
+  }
   return std::nullopt;
 }
 
-}  // namespace
-
 bool has_config(const fs::path& dir) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return false;
-  auto c = find_ci(dir, "config.g");
-  return c && fs::is_regular_file(*c, ec);
+  const std::vector<DirEntry> entries = list_dir(dir);
+  const DirEntry* c = find_entry(entries, "config.g");
+  return c && c->kind == DirEntry::Kind::File;
 }
 
 std::vector<DirEntry> list_dir(const std::string& dir) {
@@ -40,17 +50,18 @@ std::vector<DirEntry> list_dir(const std::string& dir) {
   while (const dirent* e = ::readdir(d)) {
     const std::string_view name(e->d_name);
     if (name == "." || name == "..") continue;
-    DirEntry entry{std::string(name), DirEntry::Kind::Other};
+    DirEntry entry{std::string(name), DirEntry::Kind::Other, false};
     unsigned char type = e->d_type;
     struct stat st;
     if (type == DT_UNKNOWN && ::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0)
       type = S_ISLNK(st.st_mode) ? DT_LNK : S_ISDIR(st.st_mode) ? DT_DIR : S_ISREG(st.st_mode) ? DT_REG : DT_UNKNOWN;
+    if (type == DT_LNK) {
+      entry.link = true;
+      if (::fstatat(::dirfd(d), e->d_name, &st, 0) == 0)
+        type = S_ISDIR(st.st_mode) ? DT_DIR : S_ISREG(st.st_mode) ? DT_REG : DT_UNKNOWN;
+    }
     if (type == DT_REG) entry.kind = DirEntry::Kind::File;
     else if (type == DT_DIR) entry.kind = DirEntry::Kind::Dir;
-    else if (type == DT_LNK && ::fstatat(::dirfd(d), e->d_name, &st, 0) == 0)
-      entry.kind = S_ISREG(st.st_mode) ? DirEntry::Kind::File
-                   : S_ISDIR(st.st_mode) ? DirEntry::Kind::LinkedDir
-                                         : DirEntry::Kind::Other;
     out.push_back(std::move(entry));
   }
   ::closedir(d);
@@ -137,13 +148,7 @@ const DiskReader::Listing& DiskReader::listing(const std::string& dir) const {
   return it->second;
 }
 
-std::optional<fs::path> DiskReader::locate(std::string_view sd_path) const {
-  auto where = locate_spelled(sd_path, nullptr);
-  if (!where) return std::nullopt;
-  return fs::path(std::move(*where));
-}
-
-std::optional<std::string> DiskReader::locate_spelled(std::string_view sd_path, std::string* spelled) const {
+std::optional<std::string> DiskReader::locate(std::string_view sd_path, std::string* spelled) const {
   std::string cur, out;
   std::string_view rest;
   if (sd_path.size() >= 5 && to_lower(sd_path.substr(0, 5)) == "/sys/") {
@@ -174,20 +179,6 @@ std::optional<std::string> DiskReader::locate_spelled(std::string_view sd_path, 
   return cur;
 }
 
-std::optional<std::string> DiskReader::sd_path_of(const fs::path& p) const {
-  std::error_code ec;
-  fs::path abs = fs::weakly_canonical(p, ec);
-  for (const auto& [base, prefix] : {std::pair{&sys_, "/sys"}, std::pair{&root_, ""}}) {
-    fs::path b = fs::weakly_canonical(*base, ec);
-    auto rel = abs.lexically_relative(b);
-    if (rel.empty() || rel.native().starts_with("..")) continue;
-    std::string r = rel.generic_string();
-    if (r == ".") r.clear();
-    return prefix + ("/" + r);
-  }
-  return std::nullopt;
-}
-
 ReadResult DiskReader::read(std::string_view sd_path) {
   ReadResult r;
   if (auto it = overlay_.find(to_lower(sd_path)); it != overlay_.end()) {
@@ -195,12 +186,12 @@ ReadResult DiskReader::read(std::string_view sd_path) {
     r.bytes = it->second;
     r.sd_path = std::string(sd_path);
     auto where = locate(sd_path);
-    r.display = where ? where->lexically_relative(base_).generic_string() : std::string(sd_path);
+    r.display = where ? fs::path(*where).lexically_relative(base_).generic_string() : std::string(sd_path);
     if (!where) r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
     return r;
   }
   std::string spelled;
-  auto where = locate_spelled(sd_path, &spelled);
+  auto where = locate(sd_path, &spelled);
   if (!where) return r;
   std::string err;
   auto bytes = read_file(*where, &err);
@@ -222,14 +213,14 @@ void DiskReader::list_below(const std::string& dir, const std::string& sd_prefix
                             std::vector<std::string>& out) const {
   for (const DirEntry& e : listing(dir).entries) {
     if (e.kind == DirEntry::Kind::File) out.push_back(sd_prefix + e.name);
-    else if (e.kind == DirEntry::Kind::Dir && depth < 8)  // at most 8 folders deep, as the SD card walk goes
+    else if (e.kind == DirEntry::Kind::Dir && !e.link && depth < 8)  // at most 8 folders deep, as the SD card walk goes
       list_below(join_path(dir, e.name), sd_prefix + e.name + "/", depth + 1, out);
   }
 }
 
 std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
   std::vector<std::string> out;
-  auto dir = locate_spelled(sd_dir, nullptr);
+  auto dir = locate(sd_dir);
   struct stat st;
   if (!dir || ::stat(dir->c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return out;
   std::string base(sd_dir);
@@ -245,7 +236,9 @@ std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
 std::optional<CardLocation> card_at(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return std::nullopt;
-  if (auto sys = find_ci(dir, "sys"); sys && has_config(*sys)) return CardLocation{dir, *sys};
+  const std::vector<DirEntry> entries = list_dir(dir);
+  if (const DirEntry* sys = find_entry(entries, "sys"); sys && has_config(dir / sys->name))
+    return CardLocation{dir, dir / sys->name};
   if (has_config(dir)) {
     fs::path abs = fs::absolute(dir, ec);
     if (abs.filename().empty()) abs = abs.parent_path();

@@ -13,15 +13,20 @@
 
 namespace rrflint {
 
-/// One entry of a folder listing. Symbolic links are followed to tell a file from a folder, but only a real
-/// folder is `Dir`: walks do not descend into linked folders.
+/// One entry of a folder listing. Symbolic links are followed to tell a file from a folder; walks descend only
+/// into real folders (`Dir` and not `link`).
 struct DirEntry {
-  enum class Kind : uint8_t { File, Dir, LinkedDir, Other };  // File: a regular file (or a link to one)
+  enum class Kind : uint8_t { File, Dir, Other };  // File: a regular file
   std::string name;
   Kind kind = Kind::Other;
+  bool link = false;  // a symbolic link (to `kind`)
 };
 /// The entries of a folder (without "." and ".."), in the file system's order; empty when it cannot be read.
 std::vector<DirEntry> list_dir(const std::string& dir);
+/// The entry called `name`: that exact name first, else the first that matches in any case (as FAT would);
+/// `kind` restricts both to one kind of entry.
+const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_view name,
+                           std::optional<DirEntry::Kind> kind = std::nullopt);
 /// `dir` + "/" + `name`, without doubling the slash of the root folder.
 std::string join_path(const std::string& dir, std::string_view name);
 /// The absolute, lexically normal form of a path, without a trailing slash (but "/" for the root).
@@ -36,10 +41,9 @@ class DiskReader : public FileReader {
   DiskReader(std::filesystem::path root, std::filesystem::path sys_dir, std::filesystem::path display_base);
   ReadResult read(std::string_view sd_path) override;
   std::vector<std::string> list(std::string_view sd_dir) override;
-  /// The file on disk for an SD path, if it exists.
-  std::optional<std::filesystem::path> locate(std::string_view sd_path) const;
-  /// The SD path of a file on disk, if it lies under this card.
-  std::optional<std::string> sd_path_of(const std::filesystem::path& p) const;
+  /// The file on disk for an SD path (absolute and lexically normal), if it exists. `spelled` gets the SD path
+  /// spelled as the files on disk are.
+  std::optional<std::string> locate(std::string_view sd_path, std::string* spelled = nullptr) const;
   /// Replaces a file's content (stdin, editor buffers).
   void overlay(std::string sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
 
@@ -52,8 +56,6 @@ class DiskReader : public FileReader {
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
   // Each folder is listed once (a card asks for many missing tool macros).
   const Listing& listing(const std::string& dir) const;
-  // locate() that also returns the SD path spelled as the files on disk are.
-  std::optional<std::string> locate_spelled(std::string_view sd_path, std::string* spelled) const;
   void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
   mutable std::unordered_map<std::string, Listing> listings_;
   std::string root_, sys_, base_;  // absolute and lexically normal
@@ -69,6 +71,8 @@ struct CardLocation {
   std::filesystem::path sys_dir;  // the folder that plays /sys
 };
 std::optional<CardLocation> card_at(const std::filesystem::path& dir);
+/// The SD path of a file (or folder) on disk, if it lies under this card; symbolic links are resolved first.
+std::optional<std::string> sd_path_in(const CardLocation& card, const std::filesystem::path& p);
 /// Does this folder hold a config.g (any case)?
 bool has_config(const std::filesystem::path& dir);
 

@@ -332,6 +332,21 @@ TEST_CASE("cli: a repository walk finds every card, lone files and extensionless
   CHECK_FALSE(contains(o.out, "config.g"));
 }
 
+TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, however the path is spelled", "[cli][walk]") {
+  TempTree t;
+  t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
+  t.write("a/sys/mod/config.g", "M9992\n");
+  t.write("a/sys/mod/x.g", "M9993\n");  // reached by nothing: linted as an entry of card a
+  const auto plain = run_rrflint(t.root(), "check a/sys/mod --format concise");
+  CHECK(contains(plain.out, "a/sys/mod/config.g:1:1"));
+  CHECK(contains(plain.out, "a/sys/mod/x.g:1:1"));
+  CHECK_FALSE(contains(plain.out, "a/sys/config.g"));
+  for (const char* spelled : {"a/sys/mod/", "./a/sys/mod", "a/sys/../sys/mod"}) {
+    INFO(spelled);
+    CHECK(run_rrflint(t.root(), std::string("check ") + spelled + " --format concise").out == plain.out);
+  }
+}
+
 TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
