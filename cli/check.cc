@@ -186,7 +186,8 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   bool io_error = false;
   std::vector<std::string> paths = co.paths;
   if (paths.empty()) paths.push_back(".");
-  plan(paths, co.plan, settings, jobs, io_error);
+  GitIgnore gitignore;
+  plan(paths, co.plan, settings, gitignore, jobs, io_error);
   if (settings.config_error()) {
     error(settings.config_error()->str());
     return kExitError;
@@ -198,7 +199,6 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
 
   SourceManager sm;
   Totals t;
-  GitIgnore gitignore;
   for (const Job& j : jobs) {
     if (!run_job(j, co, settings, gitignore, sm, t)) {
       if (settings.config_error()) error(settings.config_error()->str());

@@ -54,18 +54,19 @@ class Settings {
  public:
   explicit Settings(const CliOptions& cli) : cli_(cli) {}
   /// The config that governs files in `dir` (null when none). Sets error() on a bad config file.
-  std::shared_ptr<const Config> config_for(const fs::path& dir);
+  std::shared_ptr<const Config> config_for(const std::string& dir);
   /// The settings for a machine whose files start at `dir`. False on a config or option error.
   bool effective(const fs::path& dir, Effective& out);
-  /// Is `abs` excluded by the `exclude` patterns of the config that governs it? `why` gets the pattern.
-  bool excluded(const fs::path& abs, std::string* why = nullptr);
+  /// Is `abs` (absolute, normal) excluded by the `exclude` patterns of the config that governs it? `why` gets
+  /// the pattern.
+  bool excluded(const std::string& abs, std::string* why = nullptr);
   const std::optional<ConfigError>& config_error() const { return error_; }
   const CliOptions& cli() const { return cli_; }
 
  private:
   const CliOptions& cli_;
   std::map<std::string, std::shared_ptr<const Config>> loaded_;      // config file -> contents
-  std::map<std::string, std::optional<fs::path>> found_;             // folder -> nearest config file
+  std::unordered_map<std::string, std::shared_ptr<const Config>> by_folder_;  // folder -> config_for(folder)
   std::optional<ConfigError> error_;
 };
 
@@ -92,6 +93,7 @@ struct Job {
   std::string title;
   bool explicit_path = false;              // named on the command line (exclusions only with --force-exclude)
   bool excluded = false;                   // stdin excluded by --force-exclude: not linted (--fix echoes it)
+  std::shared_ptr<DirCache> dirs;          // the folder listings the plan made, for the card's reader
 };
 
 struct PlanOptions {
@@ -100,9 +102,11 @@ struct PlanOptions {
   bool respect_gitignore = true;
 };
 
-/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths.
-void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
-          bool& io_error);
+class GitIgnore;
+/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
+/// its answers for the rest of the run.
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
+          std::vector<Job>& jobs, bool& io_error);
 
 /// Is this file ignored by git (or, without git, by the .gitignore files above it)? Paths are absolute and
 /// lexically normal (absolute_normal).

@@ -19,27 +19,12 @@ namespace {
 // Stands for "anything inside this folder": a pattern that matches the folder excludes its contents.
 constexpr const char* kAnyChild = "\x01rrflint-any-child";
 
-// The folder above an absolute, normal path ("/" above "/a").
-std::string parent_of(std::string_view abs) {
-  const size_t slash = abs.rfind('/');
-  return slash == 0 || slash == std::string_view::npos ? std::string("/") : std::string(abs.substr(0, slash));
-}
-
-std::string_view name_of(std::string_view abs) { return abs.substr(abs.rfind('/') + 1); }
-
 // A file rrflint lints when it meets it in a walk: `*.g`, or a file without extension below a macros/ folder.
 bool candidate(std::string_view name, bool below_macros) {
   if (name.empty() || name.front() == '.') return false;
   const size_t dot = name.rfind('.');
   if (dot == std::string_view::npos) return below_macros;
   return to_lower(name.substr(dot)) == ".g";
-}
-
-// The folder called `name` (any case) inside `dir`, if there is one.
-std::optional<fs::path> child_ci(const fs::path& dir, const std::string& name) {
-  const std::vector<DirEntry> entries = list_dir(dir);
-  if (const DirEntry* e = find_entry(entries, name, DirEntry::Kind::Dir)) return dir / e->name;
-  return std::nullopt;
 }
 
 // Is `sd` a path the machine loads (under /sys, /macros or /filaments)?
@@ -68,27 +53,44 @@ const std::optional<std::string>& repo_of(const std::string& dir) {
   return memo.emplace(dir, std::move(result)).first->second;
 }
 
-// Which card a file belongs to, and its SD path there. Both depend only on the file's folder (unless the file is
-// a symbolic link), so they are worked out once per folder.
-class Placer {
+// What the plan learns of each folder, found once per folder (files share their folders): its listing, the
+// path with symbolic links resolved, the card its files belong to.
+class Folders {
  public:
+  // The entries of a folder (absolute, normal), listed once.
+  const std::vector<DirEntry>& entries(const std::string& dir) { return dirs_->get(dir).entries; }
+  // The listings, for the readers of the cards.
+  const std::shared_ptr<DirCache>& dirs() const { return dirs_; }
+
+  // An absolute, normal path with its symbolic links resolved, as fs::weakly_canonical gives it.
+  const std::string& real_path(const std::string& abs) {
+    if (auto it = real_.find(abs); it != real_.end()) return it->second;
+    std::string r = "/";
+    struct stat st;
+    if (abs != "/") {
+      if (::lstat(abs.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+        std::error_code ec;
+        r = absolute_normal(fs::weakly_canonical(abs, ec));
+      } else {
+        r = join_path(real_path(parent_of(abs)), name_of(abs));
+      }
+    }
+    return real_.emplace(abs, std::move(r)).first->second;
+  }
+
   struct Place {
     const CardLocation* card = nullptr;
     std::optional<std::string> sd;
   };
-  // `file` is absolute and normal; `link`: it may be a symbolic link (then its SD path is worked out on its own).
+  // The card of a file (absolute, normal) and its SD path there; `link`: the file may be a symbolic link.
   Place place(const std::string& file, bool link) {
-    auto [it, fresh] = folders_.try_emplace(parent_of(file));
-    Folder& f = it->second;
-    if (fresh) {
-      f.card = card_for(it->first);
-      if (f.card) f.sd = sd_path_in(*f.card, it->first);
-    }
+    const std::string dir = parent_of(file);
+    auto [it, fresh] = cards_.try_emplace(dir);
+    if (fresh) it->second = card_for(dir);
     Place p;
-    if (!f.card) return p;
-    p.card = &*f.card;
-    if (link) p.sd = sd_path_in(*f.card, file);
-    else if (f.sd) p.sd = join_path(*f.sd, name_of(file));
+    if (!it->second) return p;
+    p.card = &*it->second;
+    p.sd = sd_of(*p.card, link ? real_path(file) : join_path(real_path(dir), name_of(file)));
     return p;
   }
 
@@ -97,17 +99,18 @@ class Placer {
     if (auto it = roots_.find(dir); it != roots_.end()) return it->second;
     std::optional<CardLocation> result;
     if (dir != "/") {
-      if (auto sys = child_ci(dir, "sys"); sys && has_config(*sys)) result = CardLocation{dir, *sys};
+      if (auto sys = child_dir(dir, "sys"); sys && has_config(entries(sys->native()))) result = CardLocation{dir, *sys};
       else result = sd_root_above(parent_of(dir));
     }
     return roots_.emplace(dir, std::move(result)).first->second;
   }
 
  private:
-  struct Folder {
-    std::optional<CardLocation> card;
-    std::optional<std::string> sd;  // the folder's own SD path
-  };
+  // The folder called `name` (any case) inside `dir`, if there is one.
+  std::optional<fs::path> child_dir(const std::string& dir, std::string_view name) {
+    if (const DirEntry* e = find_entry(entries(dir), name, DirEntry::Kind::Dir)) return join_path(dir, e->name);
+    return std::nullopt;
+  }
 
   // The SD card of the files in `start`. A real SD root above it comes first, so folders inside sys/ that hold
   // their own config.g (modules, tool-changer sub-folders) stay part of their card. Else the parent of a sys/,
@@ -121,16 +124,27 @@ class Placer {
       if (n == "sys") return CardLocation{dir.parent_path(), dir};
       if (n == "macros" || n == "filaments") {
         const fs::path root = dir.parent_path();
-        return CardLocation{root, child_ci(root, "sys").value_or(root / "sys")};
+        return CardLocation{root, child_dir(root, "sys").value_or(root / "sys")};
       }
     }
     // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
-    if (has_config(start)) return CardLocation{parent_of(start), start};
+    if (has_config(entries(start))) return CardLocation{parent_of(start), start};
     return std::nullopt;
   }
 
-  std::unordered_map<std::string, Folder> folders_;
-  std::unordered_map<std::string, std::optional<CardLocation>> roots_;
+  // The SD path of a file on disk (links resolved) in a card: below its sys folder, else below its root.
+  std::optional<std::string> sd_of(const CardLocation& card, const std::string& real) {
+    for (const auto& [base, prefix] : {std::pair{&card.sys_dir, "/sys/"}, std::pair{&card.root, "/"}}) {
+      auto rel = path_below(real, real_path(base->native()));
+      if (rel && !rel->starts_with("..")) return prefix + *rel;
+    }
+    return std::nullopt;
+  }
+
+  std::shared_ptr<DirCache> dirs_ = std::make_shared<DirCache>();
+  std::unordered_map<std::string, std::string> real_;
+  std::unordered_map<std::string, std::optional<CardLocation>> cards_;  // folder -> the card of its files
+  std::unordered_map<std::string, std::optional<CardLocation>> roots_;  // folder -> sd_root_above
 };
 
 }  // namespace
@@ -265,7 +279,7 @@ bool GitIgnore::fallback_ignored(const std::string& abs) {
 JobReader::JobReader(const Job& job) : job_(job) {
   std::error_code ec;
   if (job.card) {
-    disk_ = std::make_unique<DiskReader>(job.card->root, job.card->sys_dir, fs::current_path(ec));
+    disk_ = std::make_unique<DiskReader>(job.card->root, job.card->sys_dir, fs::current_path(ec), job.dirs);
     if (job.stdin_bytes) disk_->overlay(job.stdin_sd_path, *job.stdin_bytes);
     return;
   }
@@ -322,14 +336,13 @@ std::optional<std::string> JobReader::disk_path(std::string_view sd_path) const 
   return job_.standalone.string();
 }
 
-void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
-          bool& io_error) {
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
+          std::vector<Job>& jobs, bool& io_error) {
   std::error_code ec;
   const std::string cwd = absolute_normal(fs::current_path(ec));
   std::map<std::string, size_t> by_root;               // canonical sys folder -> job
   std::unordered_map<std::string, size_t> by_sys;      // sys folder as the card gave it -> job
-  GitIgnore gitignore;
-  Placer placer;
+  Folders folders;
   auto show = [&](const std::string& abs) {
     auto rel = path_below(abs, cwd);
     return rel ? (rel->empty() ? std::string(".") : *rel) : abs;
@@ -337,12 +350,13 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
   auto job_for_card = [&](const CardLocation& card, const std::string& title) -> Job& {
     if (auto it = by_sys.find(card.sys_dir.native()); it != by_sys.end()) return jobs[it->second];
     CardLocation c{absolute_normal(card.root), absolute_normal(card.sys_dir)};
-    const std::string key = fs::weakly_canonical(c.sys_dir, ec).string();
+    const std::string key = folders.real_path(c.sys_dir.native());
     auto [it, fresh] = by_root.try_emplace(key, jobs.size());
     if (fresh) {
       Job j;
       j.card = c;
       j.title = title;
+      j.dirs = folders.dirs();
       jobs.push_back(j);
     }
     by_sys.emplace(card.sys_dir.native(), it->second);
@@ -359,7 +373,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
   std::vector<std::string> found;
   std::vector<bool> link;
   auto walk = [&](auto& self, const std::string& dir, int depth, bool below_macros) -> void {
-    for (const DirEntry& e : list_dir(dir)) {
+    for (const DirEntry& e : folders.entries(dir)) {
       std::string path = join_path(dir, e.name);
       if (e.kind == DirEntry::Kind::Dir) {
         if (depth > 12 || e.name.starts_with(".") || settings.excluded(join_path(path, kAnyChild)) || e.link) continue;
@@ -386,7 +400,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
           jobs.push_back(j);
           continue;
         }
-        if (auto at = placer.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+        if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
           Job& j = job_for_card(*at.card, po.stdin_filename);
           j.only.insert(to_lower(*at.sd));
           j.stdin_bytes = bytes;
@@ -414,7 +428,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       if (po.force_exclude && settings.excluded(join_path(abs, kAnyChild))) continue;
       if (auto card = card_at(path)) {
         // A folder holding config.g inside a card's sys/ (a module folder) is walked as part of that card.
-        const auto& outer = placer.sd_root_above(abs);
+        const auto& outer = folders.sd_root_above(abs);
         const bool nested = outer && fs::equivalent(card->sys_dir, abs, ec) && !fs::equivalent(outer->sys_dir, abs, ec);
         if (!nested) {
           job_for_card(*card, p).report_all = true;
@@ -433,7 +447,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       for (size_t i = 0; i < found.size(); ++i) {
         const std::string& f = found[i];
         if (settings.excluded(f) || (po.respect_gitignore && gitignore.ignored(f))) continue;
-        const Placer::Place at = placer.place(f, link[i]);
+        const Folders::Place at = folders.place(f, link[i]);
         if (!at.card || !at.sd || !machine_path(*at.sd)) {
           lone(f, show(f), false);
           continue;
@@ -452,7 +466,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       io_error = true;
       continue;
     }
-    if (auto at = placer.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+    if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
       Job& j = job_for_card(*at.card, p);
       j.only.insert(to_lower(*at.sd));
       j.explicit_path = true;

@@ -23,22 +23,9 @@ const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_vie
   return nullptr;
 }
 
-std::optional<std::string> sd_path_in(const CardLocation& card, const fs::path& p) {
-  std::error_code ec;
-  const fs::path abs = fs::weakly_canonical(fs::absolute(p, ec), ec);
-  for (const auto& [base, prefix] : {std::pair{&card.sys_dir, "/sys"}, std::pair{&card.root, ""}}) {
-    const fs::path b = fs::weakly_canonical(fs::absolute(*base, ec), ec);
-    auto rel = abs.lexically_relative(b);
-    if (rel.empty() || rel.native().starts_with("..")) continue;
-    std::string r = rel.generic_string();
-    if (r == ".") r.clear();
-    return prefix + ("/" + r);
-  }
-  return std::nullopt;
-}
+bool has_config(const fs::path& dir) { return has_config(list_dir(dir)); }
 
-bool has_config(const fs::path& dir) {
-  const std::vector<DirEntry> entries = list_dir(dir);
+bool has_config(const std::vector<DirEntry>& entries) {
   const DirEntry* c = find_entry(entries, "config.g");
   return c && c->kind == DirEntry::Kind::File;
 }
@@ -77,6 +64,13 @@ std::string join_path(const std::string& dir, std::string_view name) {
   return out;
 }
 
+std::string parent_of(std::string_view abs) {
+  const size_t slash = abs.rfind('/');
+  return slash == 0 || slash == std::string_view::npos ? std::string("/") : std::string(abs.substr(0, slash));
+}
+
+std::string_view name_of(std::string_view path) { return path.substr(path.rfind('/') + 1); }
+
 std::optional<std::string> path_below(std::string_view abs, std::string_view base) {
   if (abs == base) return std::string();
   if (base == "/") return abs.starts_with('/') ? std::optional<std::string>(abs.substr(1)) : std::nullopt;
@@ -93,6 +87,7 @@ std::optional<std::string> read_file(const std::string& path, std::string* error
   struct stat st;
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) {
+    if (!error) return std::nullopt;
     if (::stat(path.c_str(), &st) != 0) return fail("no such file");
     return fail(S_ISDIR(st.st_mode) ? "is a directory" : "permission denied or unreadable");
   }
@@ -128,17 +123,7 @@ std::string absolute_normal(const fs::path& p) {
   return s;
 }
 
-DiskReader::DiskReader(fs::path root, fs::path sys_dir, fs::path display_base)
-    : root_(absolute_normal(root)), sys_(absolute_normal(sys_dir)), base_(absolute_normal(display_base)) {}
-
-fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
-  std::string d(sd_dir);
-  if (to_lower(d) == "/sys" || to_lower(d).starts_with("/sys/"))
-    return fs::path(sys_) / d.substr(std::min<size_t>(d.size(), 5));
-  return fs::path(root_) / (d.starts_with("/") ? d.substr(1) : d);
-}
-
-const DiskReader::Listing& DiskReader::listing(const std::string& dir) const {
+const DirCache::Listing& DirCache::get(const std::string& dir) {
   auto [it, fresh] = listings_.try_emplace(dir);
   if (fresh) {
     Listing& l = it->second;
@@ -146,6 +131,19 @@ const DiskReader::Listing& DiskReader::listing(const std::string& dir) const {
     for (size_t i = 0; i < l.entries.size(); ++i) l.by_lower.try_emplace(to_lower(l.entries[i].name), i);
   }
   return it->second;
+}
+
+DiskReader::DiskReader(fs::path root, fs::path sys_dir, fs::path display_base, std::shared_ptr<DirCache> dirs)
+    : root_(absolute_normal(root)),
+      sys_(absolute_normal(sys_dir)),
+      base_(absolute_normal(display_base)),
+      dirs_(dirs ? std::move(dirs) : std::make_shared<DirCache>()) {}
+
+fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
+  std::string d(sd_dir);
+  if (to_lower(d) == "/sys" || to_lower(d).starts_with("/sys/"))
+    return fs::path(sys_) / d.substr(std::min<size_t>(d.size(), 5));
+  return fs::path(root_) / (d.starts_with("/") ? d.substr(1) : d);
 }
 
 std::optional<std::string> DiskReader::locate(std::string_view sd_path, std::string* spelled) const {
@@ -164,7 +162,7 @@ std::optional<std::string> DiskReader::locate(std::string_view sd_path, std::str
     const size_t slash = rest.find('/', start);
     const std::string_view seg = rest.substr(start, slash == std::string_view::npos ? slash : slash - start);
     if (!seg.empty()) {
-      const Listing& l = listing(cur);
+      const DirCache::Listing& l = dirs_->get(cur);
       auto hit = l.by_lower.find(to_lower(seg));
       if (hit == l.by_lower.end()) return std::nullopt;
       const std::string& name = l.entries[hit->second].name;
@@ -211,7 +209,7 @@ ReadResult DiskReader::read(std::string_view sd_path) {
 
 void DiskReader::list_below(const std::string& dir, const std::string& sd_prefix, int depth,
                             std::vector<std::string>& out) const {
-  for (const DirEntry& e : listing(dir).entries) {
+  for (const DirEntry& e : dirs_->get(dir).entries) {
     if (e.kind == DirEntry::Kind::File) out.push_back(sd_prefix + e.name);
     else if (e.kind == DirEntry::Kind::Dir && !e.link && depth < 8)  // at most 8 folders deep, as the SD card walk goes
       list_below(join_path(dir, e.name), sd_prefix + e.name + "/", depth + 1, out);

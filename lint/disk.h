@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -31,14 +32,35 @@ const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_vie
 std::string join_path(const std::string& dir, std::string_view name);
 /// The absolute, lexically normal form of a path, without a trailing slash (but "/" for the root).
 std::string absolute_normal(const std::filesystem::path& p);
+/// The folder above an absolute, normal path ("/" above "/a").
+std::string parent_of(std::string_view abs);
+/// The last part of a path.
+std::string_view name_of(std::string_view path);
 /// `abs` relative to `base` ("" when equal), if it lies at or below it. Both absolute and lexically normal.
 std::optional<std::string> path_below(std::string_view abs, std::string_view base);
+
+/// Folder listings, each folder read once. A run shares one between its walk and its readers (the walk has
+/// listed the folders the readers look in); it never forgets, so it is not for a long-lived process.
+class DirCache {
+ public:
+  struct Listing {
+    std::vector<DirEntry> entries;
+    std::unordered_map<std::string, size_t> by_lower;  // lower-cased name -> the first entry of that name
+  };
+  /// The listing of a folder (absolute, normal).
+  const Listing& get(const std::string& dir);
+
+ private:
+  std::unordered_map<std::string, Listing> listings_;
+};
 
 /// Maps SD paths onto a folder: "/sys/…" onto `sys_dir`, "/<other>/…" onto `root/<other>`.
 /// Lookups fall back to a case-insensitive match, as the SD card's FAT file system would.
 class DiskReader : public FileReader {
  public:
-  DiskReader(std::filesystem::path root, std::filesystem::path sys_dir, std::filesystem::path display_base);
+  /// `dirs`: listings to share with other readers of the same run (by default, the reader's own).
+  DiskReader(std::filesystem::path root, std::filesystem::path sys_dir, std::filesystem::path display_base,
+             std::shared_ptr<DirCache> dirs = nullptr);
   ReadResult read(std::string_view sd_path) override;
   std::vector<std::string> list(std::string_view sd_dir) override;
   /// The file on disk for an SD path (absolute and lexically normal), if it exists. `spelled` gets the SD path
@@ -48,17 +70,10 @@ class DiskReader : public FileReader {
   void overlay(std::string sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
 
  private:
-  // A folder's entries and a case-insensitive index of them (the first of several names that differ in case).
-  struct Listing {
-    std::vector<DirEntry> entries;
-    std::unordered_map<std::string, size_t> by_lower;
-  };
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
-  // Each folder is listed once (a card asks for many missing tool macros).
-  const Listing& listing(const std::string& dir) const;
   void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
-  mutable std::unordered_map<std::string, Listing> listings_;
   std::string root_, sys_, base_;  // absolute and lexically normal
+  std::shared_ptr<DirCache> dirs_;  // each folder listed once (a card asks for many missing tool macros)
   std::map<std::string, std::string> overlay_;
 };
 
@@ -71,9 +86,9 @@ struct CardLocation {
   std::filesystem::path sys_dir;  // the folder that plays /sys
 };
 std::optional<CardLocation> card_at(const std::filesystem::path& dir);
-/// The SD path of a file (or folder) on disk, if it lies under this card; symbolic links are resolved first.
-std::optional<std::string> sd_path_in(const CardLocation& card, const std::filesystem::path& p);
 /// Does this folder hold a config.g (any case)?
 bool has_config(const std::filesystem::path& dir);
+/// The same for a folder already listed.
+bool has_config(const std::vector<DirEntry>& entries);
 
 }  // namespace rrflint
