@@ -66,7 +66,9 @@ class Settings {
  private:
   const CliOptions& cli_;
   std::map<std::string, std::shared_ptr<const Config>> loaded_;      // config file -> contents
+  void resolve(std::shared_ptr<const Config> config, Effective& out);  // effective() for a config
   std::unordered_map<std::string, std::shared_ptr<const Config>> by_folder_;  // folder -> config_for(folder)
+  std::map<const Config*, Effective> effective_;                              // config (or none) -> settings
   std::optional<ConfigError> error_;
 };
 
@@ -130,7 +132,6 @@ class GitIgnore {
   const std::vector<Pattern>& patterns(const std::string& dir);
   const Folder& folder(const std::string& dir);
   bool verdict(const std::string& path, bool is_dir, const std::vector<std::string>& chain);
-  bool fallback_ignored(const std::string& abs);
   std::unordered_map<std::string, bool> cache_;  // file -> git check-ignore's answer
   std::set<std::string> no_git_;                 // repositories where git check-ignore gave no answer
   std::unordered_map<std::string, std::vector<Pattern>> patterns_;  // folder -> its .gitignore

@@ -206,13 +206,20 @@ void GitIgnore::prefetch(const std::vector<std::string>& files) {
 
 bool GitIgnore::ignored(const std::string& abs) {
   if (auto it = cache_.find(abs); it != cache_.end()) return it->second;
-  prefetch({abs});
-  if (auto it = cache_.find(abs); it != cache_.end()) return it->second;
-  return fallback_ignored(abs);
+  const std::string dir = parent_of(abs);
+  if (const auto& root = repo_of(dir); root && !no_git_.count(*root)) {
+    prefetch({abs});
+    if (auto it = cache_.find(abs); it != cache_.end()) return it->second;
+  }
+  // Without git: the .gitignore files from the repository top (or the file-system root) down to the file. A
+  // folder that is ignored hides everything below it.
+  const Folder& f = folder(dir);
+  if (!f.patterns) return false;  // the usual case: no .gitignore anywhere above the file
+  return f.ignored || verdict(abs, false, f.chain);
 }
 
-// Without git: the .gitignore files from the repository root (or the file-system root) down to the file.
-// Supports comments, `!` negation, a trailing `/` (folders only), anchoring by `/`, `*`, `?`, `**`, `[…]`.
+// A folder's .gitignore. Supports comments, `!` negation, a trailing `/` (folders only), anchoring by `/`, `*`,
+// `?`, `**`, `[…]`.
 const std::vector<GitIgnore::Pattern>& GitIgnore::patterns(const std::string& dir) {
   if (auto it = patterns_.find(dir); it != patterns_.end()) return it->second;
   std::vector<Pattern> pats;
@@ -267,13 +274,6 @@ bool GitIgnore::verdict(const std::string& path, bool is_dir, const std::vector<
     }
   }
   return result.value_or(false);
-}
-
-// A folder that is ignored hides everything below it.
-bool GitIgnore::fallback_ignored(const std::string& abs) {
-  const Folder& f = folder(parent_of(abs));
-  if (!f.patterns) return false;  // the usual case: no .gitignore anywhere above the file
-  return f.ignored || verdict(abs, false, f.chain);
 }
 
 JobReader::JobReader(const Job& job) : job_(job) {

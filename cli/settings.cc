@@ -71,9 +71,17 @@ std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli)
 }
 
 bool Settings::effective(const fs::path& dir, Effective& out) {
-  out = Effective{};
-  out.config = config_for(dir);
+  std::shared_ptr<const Config> config = config_for(dir);
   if (error_) return false;
+  // The settings depend only on the config file: worked out once for each.
+  auto [memo, fresh] = effective_.try_emplace(config.get());
+  if (fresh) resolve(std::move(config), memo->second);
+  out = memo->second;
+  return true;
+}
+
+void Settings::resolve(std::shared_ptr<const Config> config, Effective& out) {
+  out.config = std::move(config);
   const Config* cfg = out.config.get();
   std::vector<std::string> on;
   bool as_default = true;  // exactly the rules on by default
@@ -114,7 +122,6 @@ bool Settings::effective(const fs::path& dir, Effective& out) {
       return false;
     };
   }
-  return true;
 }
 
 bool Settings::excluded(const std::string& abs, std::string* why) {
