@@ -82,15 +82,17 @@ class Folders {
     const CardLocation* card = nullptr;
     std::optional<std::string> sd;
   };
-  // The card of a file (absolute, normal) and its SD path there; `link`: the file may be a symbolic link.
+  // The card of a file (absolute, normal) and its SD path there; `link`: the file may be a symbolic link (else
+  // its SD path is its folder's and its name).
   Place place(const std::string& file, bool link) {
-    const std::string dir = parent_of(file);
-    auto [it, fresh] = cards_.try_emplace(dir);
-    if (fresh) it->second = card_for(dir);
+    auto [it, fresh] = folders_.try_emplace(parent_of(file));
+    Folder& f = it->second;
+    if (fresh && (f.card = card_for(it->first))) f.sd = sd_of(*f.card, real_path(it->first));
     Place p;
-    if (!it->second) return p;
-    p.card = &*it->second;
-    p.sd = sd_of(*p.card, link ? real_path(file) : join_path(real_path(dir), name_of(file)));
+    if (!f.card) return p;
+    p.card = &*f.card;
+    if (link) p.sd = sd_of(*f.card, real_path(file));
+    else if (f.sd) p.sd = join_path(*f.sd, name_of(file));
     return p;
   }
 
@@ -143,7 +145,11 @@ class Folders {
 
   std::shared_ptr<DirCache> dirs_ = std::make_shared<DirCache>();
   std::unordered_map<std::string, std::string> real_;
-  std::unordered_map<std::string, std::optional<CardLocation>> cards_;  // folder -> the card of its files
+  struct Folder {
+    std::optional<CardLocation> card;  // the card of its files
+    std::optional<std::string> sd;     // its SD path in that card
+  };
+  std::unordered_map<std::string, Folder> folders_;
   std::unordered_map<std::string, std::optional<CardLocation>> roots_;  // folder -> sd_root_above
 };
 

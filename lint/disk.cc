@@ -97,19 +97,20 @@ std::optional<std::string> read_file(const std::string& path, std::string* error
   } closer{fd};
   if (::fstat(fd, &st) != 0) return fail("read error");
   if (S_ISDIR(st.st_mode)) return fail("is a directory");
-  // The size fstat gives, then on to the end in case the file grew (or is not a regular file and has no size).
-  std::string s(S_ISREG(st.st_mode) && st.st_size > 0 ? static_cast<size_t>(st.st_size) : 0, '\0');
+  // A file with a size: that many bytes (the file as it was when opened). Without one (empty, a pipe, /proc):
+  // on to the end.
+  const bool sized = S_ISREG(st.st_mode) && st.st_size > 0;
+  std::string s(sized ? static_cast<size_t>(st.st_size) : 0, '\0');
   size_t got = 0;
   char more[4096];
-  for (;;) {
-    const bool into_s = got < s.size();
-    const ssize_t n = into_s ? ::read(fd, s.data() + got, s.size() - got) : ::read(fd, more, sizeof more);
+  while (!sized || got < s.size()) {
+    const ssize_t n = sized ? ::read(fd, s.data() + got, s.size() - got) : ::read(fd, more, sizeof more);
     if (n < 0) {
       if (errno == EINTR) continue;
       return fail("read error");
     }
     if (n == 0) break;
-    if (into_s) got += static_cast<size_t>(n);
+    if (sized) got += static_cast<size_t>(n);
     else s.append(more, static_cast<size_t>(n)), got = s.size();
   }
   s.resize(got);
