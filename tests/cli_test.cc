@@ -379,6 +379,29 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files onl
   CHECK(contains(o.out, "gen/out.g"));
 }
 
+TEST_CASE("cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns; git and the built-in matcher agree",
+          "[cli][walk]") {
+  TempTree t;
+  t.write("sub/.gitignore", "# comment\nkeep/*\n!keep/this.g\n/anch.g\ndironly/\n");
+  t.write("sub/keep/this.g", "M9991\n");    // ignored by keep/*, then un-ignored
+  t.write("sub/keep/that.g", "M9992\n");    // ignored
+  t.write("sub/anch.g", "M9993\n");         // ignored: anchored to sub/
+  t.write("sub/x/anch.g", "M9994\n");       // not: the pattern is anchored
+  t.write("sub/dironly/f.g", "M9995\n");    // ignored with its folder
+  t.write("sub/dironly.g", "M9996\n");      // not: dironly/ matches folders only
+  auto check_walk = [&](const std::string& label) {
+    INFO(label);
+    const std::string out = run_rrflint(t.root(), "check sub --format concise").out;
+    for (const char* code : {"M9991", "M9994", "M9996"}) CHECK(contains(out, code));
+    for (const char* code : {"M9992", "M9993", "M9995"}) CHECK_FALSE(contains(out, code));
+  };
+  check_walk("no repository: the built-in .gitignore matcher");
+  if (git_available()) {
+    REQUIRE(std::system(("git -C " + shell_quote(t.root().string()) + " init -q").c_str()) == 0);
+    check_walk("inside a git repository: git check-ignore");
+  }
+}
+
 TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url and fix", "[cli][docs]") {
   TempTree t;
   auto o = run_rrflint(t.root(), "rule RRF900");
