@@ -64,9 +64,9 @@ class Settings {
   const CliOptions& cli() const { return cli_; }
 
  private:
-  const CliOptions& cli_;
-  std::map<std::string, std::shared_ptr<const Config>> loaded_;      // config file -> contents
   void resolve(std::shared_ptr<const Config> config, Effective& out);  // effective() for a config
+  const CliOptions& cli_;
+  std::map<std::string, std::shared_ptr<const Config>> loaded_;               // config file -> contents
   std::unordered_map<std::string, std::shared_ptr<const Config>> by_folder_;  // folder -> config_for(folder)
   std::map<const Config*, Effective> effective_;                              // config (or none) -> settings
   std::optional<ConfigError> error_;
@@ -104,12 +104,6 @@ struct PlanOptions {
   bool respect_gitignore = true;
 };
 
-class GitIgnore;
-/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
-/// its answers for the rest of the run.
-void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
-          std::vector<Job>& jobs, bool& io_error);
-
 /// Is this file ignored by git (or, without git, by the .gitignore files above it)? Paths are absolute and
 /// lexically normal (absolute_normal).
 class GitIgnore {
@@ -125,7 +119,7 @@ class GitIgnore {
   };
   // What the fallback matcher knows of a folder, worked out once per folder (files share their folders).
   struct Folder {
-    std::vector<std::string> chain;  // the folders whose .gitignore applies, from the repository top down to this one
+    std::vector<std::string> chain;  // the folders whose .gitignore applies: the repository top down to this one
     bool patterns = false;           // one of them has patterns
     bool ignored = false;            // this folder, or one above it below the top, is ignored
   };
@@ -137,6 +131,11 @@ class GitIgnore {
   std::unordered_map<std::string, std::vector<Pattern>> patterns_;  // folder -> its .gitignore
   std::unordered_map<std::string, Folder> folders_;
 };
+
+/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
+/// its answers for the rest of the run.
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
+          std::vector<Job>& jobs, bool& io_error);
 
 /// The FileReader of a job, with in-memory replacements (fixed text) on top.
 class JobReader : public FileReader {

@@ -332,7 +332,7 @@ TEST_CASE("cli: a repository walk finds every card, lone files and extensionless
   CHECK_FALSE(contains(o.out, "config.g"));
 }
 
-TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, however the path is spelled", "[cli][walk]") {
+TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, however it is spelled", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
   t.write("a/sys/mod/config.g", "M9992\n");
