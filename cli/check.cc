@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <unordered_map>
 
 #include "cli.h"
 #include "lint/render/render.h"
@@ -37,23 +38,26 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
   if (!settings.effective(dir, eff)) return false;
   JobReader reader(job);
 
+  // Decided once per file: a card's files have many findings each.
+  std::unordered_map<FileId, bool> reportable_memo;
   auto reportable = [&](const SourceFile& f) {
-    const std::string sd = to_lower(f.sd_path());
     if (!job.card) return true;
-    if (!job.report_all) return job.only.count(sd) > 0;
-    if (job.stdin_bytes && sd == to_lower(job.stdin_sd_path)) return true;
-    auto disk = reader.disk_path(f.sd_path());
-    if (!disk) return true;
-    const fs::path abs = fs::absolute(*disk, ec).lexically_normal();
-    return !settings.excluded(abs) && !(co.plan.respect_gitignore && gitignore.ignored(abs));
+    auto [it, fresh] = reportable_memo.try_emplace(f.id(), true);
+    if (!fresh) return it->second;
+    const std::string sd = to_lower(f.sd_path());
+    if (!job.report_all) it->second = job.only.count(sd) > 0;
+    else if (job.stdin_bytes && sd == to_lower(job.stdin_sd_path)) it->second = true;
+    else if (auto abs = reader.disk_path(f.sd_path()))
+      it->second = !settings.excluded(*abs) && !(co.plan.respect_gitignore && gitignore.ignored(*abs));
+    return it->second;
   };
 
   MachineResult r = lint_machine(sm, reader, eff.lint);
   if (job.report_all && co.plan.respect_gitignore) {
     // One `git check-ignore` for the whole card rather than one per file.
-    std::vector<fs::path> files;
+    std::vector<std::string> files;
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-      if (auto disk = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(fs::absolute(*disk, ec).lexically_normal());
+      if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(std::move(*abs));
     gitignore.prefetch(files);
   }
   for (const LoadProblem& p : r.machine->problems()) {
@@ -182,7 +186,8 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   bool io_error = false;
   std::vector<std::string> paths = co.paths;
   if (paths.empty()) paths.push_back(".");
-  plan(paths, co.plan, settings, jobs, io_error);
+  GitIgnore gitignore;
+  plan(paths, co.plan, settings, gitignore, jobs, io_error);
   if (settings.config_error()) {
     error(settings.config_error()->str());
     return kExitError;
@@ -194,7 +199,6 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
 
   SourceManager sm;
   Totals t;
-  GitIgnore gitignore;
   for (const Job& j : jobs) {
     if (!run_job(j, co, settings, gitignore, sm, t)) {
       if (settings.config_error()) error(settings.config_error()->str());

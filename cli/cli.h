@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lint/config.h"
@@ -53,18 +54,21 @@ class Settings {
  public:
   explicit Settings(const CliOptions& cli) : cli_(cli) {}
   /// The config that governs files in `dir` (null when none). Sets error() on a bad config file.
-  std::shared_ptr<const Config> config_for(const fs::path& dir);
+  std::shared_ptr<const Config> config_for(const std::string& dir);
   /// The settings for a machine whose files start at `dir`. False on a config or option error.
   bool effective(const fs::path& dir, Effective& out);
-  /// Is `abs` excluded by the `exclude` patterns of the config that governs it? `why` gets the pattern.
-  bool excluded(const fs::path& abs, std::string* why = nullptr);
+  /// Is `abs` (absolute, normal) excluded by the `exclude` patterns of the config that governs it? `why` gets
+  /// the pattern.
+  bool excluded(const std::string& abs, std::string* why = nullptr);
   const std::optional<ConfigError>& config_error() const { return error_; }
   const CliOptions& cli() const { return cli_; }
 
  private:
+  void resolve(std::shared_ptr<const Config> config, Effective& out);  // effective() for a config
   const CliOptions& cli_;
-  std::map<std::string, std::shared_ptr<const Config>> loaded_;      // config file -> contents
-  std::map<std::string, std::optional<fs::path>> found_;             // folder -> nearest config file
+  std::map<std::string, std::shared_ptr<const Config>> loaded_;               // config file -> contents
+  std::unordered_map<std::string, std::shared_ptr<const Config>> by_folder_;  // folder -> config_for(folder)
+  std::map<const Config*, Effective> effective_;                              // config (or none) -> settings
   std::optional<ConfigError> error_;
 };
 
@@ -91,6 +95,7 @@ struct Job {
   std::string title;
   bool explicit_path = false;              // named on the command line (exclusions only with --force-exclude)
   bool excluded = false;                   // stdin excluded by --force-exclude: not linted (--fix echoes it)
+  std::shared_ptr<DirCache> dirs;          // the folder listings the plan made, for the card's reader
 };
 
 struct PlanOptions {
@@ -99,23 +104,38 @@ struct PlanOptions {
   bool respect_gitignore = true;
 };
 
-/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths.
-void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
-          bool& io_error);
-
-/// Is this file ignored by git (or, without git, by the .gitignore files above it)?
+/// Is this file ignored by git (or, without git, by the .gitignore files above it)? Paths are absolute and
+/// lexically normal (absolute_normal).
 class GitIgnore {
  public:
   /// Answers for many files at once (one `git check-ignore` per repository).
-  void prefetch(const std::vector<fs::path>& files);
-  bool ignored(const fs::path& abs);
+  void prefetch(const std::vector<std::string>& files);
+  bool ignored(const std::string& abs);
 
  private:
-  std::map<std::string, bool> cache_;
-  std::map<std::string, bool> dir_cache_;  // folder -> ignored (fallback matcher)
-  std::map<std::string, std::vector<std::pair<std::string, bool>>> patterns_;  // folder -> (pattern, negated)
-  bool fallback_ignored(const fs::path& abs);
+  struct Pattern {
+    std::string glob;
+    bool negated = false, dir_only = false, anchored = false;
+  };
+  // What the fallback matcher knows of a folder, worked out once per folder (files share their folders).
+  struct Folder {
+    std::vector<std::string> chain;  // the folders whose .gitignore applies: the repository top down to this one
+    bool patterns = false;           // one of them has patterns
+    bool ignored = false;            // this folder, or one above it below the top, is ignored
+  };
+  const std::vector<Pattern>& patterns(const std::string& dir);
+  const Folder& folder(const std::string& dir);
+  bool verdict(const std::string& path, bool is_dir, const std::vector<std::string>& chain);
+  std::unordered_map<std::string, bool> cache_;  // file -> git check-ignore's answer
+  std::set<std::string> no_git_;                 // repositories where git check-ignore gave no answer
+  std::unordered_map<std::string, std::vector<Pattern>> patterns_;  // folder -> its .gitignore
+  std::unordered_map<std::string, Folder> folders_;
 };
+
+/// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
+/// its answers for the rest of the run.
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
+          std::vector<Job>& jobs, bool& io_error);
 
 /// The FileReader of a job, with in-memory replacements (fixed text) on top.
 class JobReader : public FileReader {
@@ -124,8 +144,8 @@ class JobReader : public FileReader {
   ReadResult read(std::string_view sd_path) override;
   std::vector<std::string> list(std::string_view sd_dir) override;
   void set(const std::string& sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
-  /// The file on disk behind an SD path (nullopt for stdin or unknown).
-  std::optional<fs::path> disk_path(std::string_view sd_path) const;
+  /// The file on disk behind an SD path (nullopt for stdin or unknown); absolute and normal in a card.
+  std::optional<std::string> disk_path(std::string_view sd_path) const;
 
  private:
   const Job& job_;

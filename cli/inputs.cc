@@ -6,9 +6,10 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unordered_map>
 
 #include "cli.h"
 
@@ -18,63 +19,12 @@ namespace {
 // Stands for "anything inside this folder": a pattern that matches the folder excludes its contents.
 constexpr const char* kAnyChild = "\x01rrflint-any-child";
 
-bool has_g_extension(const fs::path& p) { return to_lower(p.extension().string()) == ".g"; }
-
 // A file rrflint lints when it meets it in a walk: `*.g`, or a file without extension below a macros/ folder.
-bool candidate(const fs::path& p) {
-  const std::string name = p.filename().string();
+bool candidate(std::string_view name, bool below_macros) {
   if (name.empty() || name.front() == '.') return false;
-  if (has_g_extension(p)) return true;
-  if (name.find('.') != std::string::npos) return false;
-  for (fs::path d = p.parent_path(); d.has_filename(); d = d.parent_path())
-    if (to_lower(d.filename().string()) == "macros") return true;
-  return false;
-}
-
-// The folder called `name` (any case) inside `dir`, if there is one.
-std::optional<fs::path> child_ci(const fs::path& dir, const std::string& name) {
-  std::error_code ec;
-  if (fs::is_directory(dir / name, ec)) return dir / name;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (to_lower(it->path().filename().string()) == name && it->is_directory(ec)) return it->path();
-  return std::nullopt;
-}
-
-// The nearest folder at or above `dir` whose sys/ holds config.g: a real SD root.
-std::optional<CardLocation> sd_root_above(fs::path dir) {
-  // Memoised per folder: a repository walk asks this for every file, and files share their folders.
-  static std::map<std::string, std::optional<CardLocation>> memo;
-  std::error_code ec;
-  dir = fs::absolute(dir, ec).lexically_normal();
-  auto [hit, fresh] = memo.try_emplace(dir.string());
-  if (!fresh) return hit->second;
-  std::optional<CardLocation> result;
-  for (fs::path d = dir; !result && d.has_filename(); d = d.parent_path())
-    if (auto sys = child_ci(d, "sys"); sys && has_config(*sys)) result = CardLocation{d, *sys};
-  hit->second = result;
-  return result;
-}
-
-// The SD card a file belongs to. A real SD root above it comes first, so folders inside sys/ that hold their
-// own config.g (modules, tool-changer sub-folders) stay part of their card. Else the parent of a sys/, macros/
-// or filaments/ folder above it (a card without config.g), else the file's own folder when it holds config.g
-// (a sys folder under another name).
-std::optional<CardLocation> card_for(const fs::path& file) {
-  std::error_code ec;
-  const fs::path start = fs::absolute(file, ec).parent_path();
-  if (auto c = sd_root_above(start)) return c;
-  fs::path dir = start;
-  for (int i = 0; i < 8 && dir.has_filename(); ++i, dir = dir.parent_path()) {
-    const std::string n = to_lower(dir.filename().string());
-    if (n == "sys") return CardLocation{dir.parent_path(), dir};
-    if (n == "macros" || n == "filaments") {
-      const fs::path root = dir.parent_path();
-      return CardLocation{root, child_ci(root, "sys").value_or(root / "sys")};
-    }
-  }
-  // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
-  if (has_config(start)) return CardLocation{start.parent_path(), start};
-  return std::nullopt;
+  const size_t dot = name.rfind('.');
+  if (dot == std::string_view::npos) return below_macros;
+  return to_lower(name.substr(dot)) == ".g";
 }
 
 // Is `sd` a path the machine loads (under /sys, /macros or /filaments)?
@@ -92,47 +42,139 @@ std::string shell_quote(const std::string& s) {
   return out + "'";
 }
 
-bool is_ancestor(const fs::path& a, const fs::path& b) {  // a is b or above it
-  auto rel = relative_below(b, a);
-  return rel.has_value();
+// The git top-level folder of an absolute, normal folder (memoised per folder: files share their folders).
+const std::optional<std::string>& repo_of(const std::string& dir) {
+  static std::unordered_map<std::string, std::optional<std::string>> memo;
+  if (auto it = memo.find(dir); it != memo.end()) return it->second;
+  std::optional<std::string> result;
+  struct stat st;
+  if (::stat(join_path(dir, ".git").c_str(), &st) == 0) result = dir;
+  else if (dir != "/") result = repo_of(parent_of(dir));
+  return memo.emplace(dir, std::move(result)).first->second;
 }
+
+// What the plan learns of each folder, found once per folder (files share their folders): its listing, the
+// path with symbolic links resolved, the card its files belong to.
+class Folders {
+ public:
+  // The entries of a folder (absolute, normal), listed once.
+  const std::vector<DirEntry>& entries(const std::string& dir) { return dirs_->get(dir).entries; }
+  // The listings, for the readers of the cards.
+  const std::shared_ptr<DirCache>& dirs() const { return dirs_; }
+
+  // An absolute, normal path with its symbolic links resolved, as fs::weakly_canonical gives it.
+  const std::string& real_path(const std::string& abs) {
+    if (auto it = real_.find(abs); it != real_.end()) return it->second;
+    std::string r = "/";
+    struct stat st;
+    if (abs != "/") {
+      if (::lstat(abs.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+        std::error_code ec;
+        r = absolute_normal(fs::weakly_canonical(abs, ec));
+      } else {
+        r = join_path(real_path(parent_of(abs)), name_of(abs));
+      }
+    }
+    return real_.emplace(abs, std::move(r)).first->second;
+  }
+
+  struct Place {
+    const CardLocation* card = nullptr;
+    std::optional<std::string> sd;
+  };
+  // The card of a file (absolute, normal) and its SD path there; `link`: the file may be a symbolic link (else
+  // its SD path is its folder's and its name).
+  Place place(const std::string& file, bool link) {
+    auto [it, fresh] = folders_.try_emplace(parent_of(file));
+    Folder& f = it->second;
+    if (fresh && (f.card = card_for(it->first))) f.sd = sd_of(*f.card, real_path(it->first));
+    Place p;
+    if (!f.card) return p;
+    p.card = &*f.card;
+    if (link) p.sd = sd_of(*f.card, real_path(file));
+    else if (f.sd) p.sd = join_path(*f.sd, name_of(file));
+    return p;
+  }
+
+  // The nearest folder at or above `dir` (absolute, normal) whose sys/ holds config.g: a real SD root.
+  const std::optional<CardLocation>& sd_root_above(const std::string& dir) {
+    if (auto it = roots_.find(dir); it != roots_.end()) return it->second;
+    std::optional<CardLocation> result;
+    if (dir != "/") {
+      if (auto sys = child_dir(dir, "sys"); sys && has_config(entries(sys->native()))) result = CardLocation{dir, *sys};
+      else result = sd_root_above(parent_of(dir));
+    }
+    return roots_.emplace(dir, std::move(result)).first->second;
+  }
+
+ private:
+  // The folder called `name` (any case) inside `dir`, if there is one.
+  std::optional<fs::path> child_dir(const std::string& dir, std::string_view name) {
+    if (const DirEntry* e = find_entry(entries(dir), name, DirEntry::Kind::Dir)) return join_path(dir, e->name);
+    return std::nullopt;
+  }
+
+  // The SD card of the files in `start`. A real SD root above it comes first, so folders inside sys/ that hold
+  // their own config.g (modules, tool-changer sub-folders) stay part of their card. Else the parent of a sys/,
+  // macros/ or filaments/ folder above it (a card without config.g), else `start` itself when it holds config.g
+  // (a sys folder under another name).
+  std::optional<CardLocation> card_for(const std::string& start) {
+    if (const auto& c = sd_root_above(start)) return c;
+    fs::path dir = start;
+    for (int i = 0; i < 8 && dir.has_filename(); ++i, dir = dir.parent_path()) {
+      const std::string n = to_lower(dir.filename().string());
+      if (n == "sys") return CardLocation{dir.parent_path(), dir};
+      if (n == "macros" || n == "filaments") {
+        const fs::path root = dir.parent_path();
+        return CardLocation{root, child_dir(root, "sys").value_or(root / "sys")};
+      }
+    }
+    // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
+    if (has_config(entries(start))) return CardLocation{parent_of(start), start};
+    return std::nullopt;
+  }
+
+  // The SD path of a file on disk (links resolved) in a card: below its sys folder, else below its root.
+  std::optional<std::string> sd_of(const CardLocation& card, const std::string& real) {
+    for (const auto& [base, prefix] : {std::pair{&card.sys_dir, "/sys/"}, std::pair{&card.root, "/"}}) {
+      auto rel = path_below(real, real_path(base->native()));
+      if (rel && !rel->starts_with("..")) return prefix + *rel;
+    }
+    return std::nullopt;
+  }
+
+  std::shared_ptr<DirCache> dirs_ = std::make_shared<DirCache>();
+  std::unordered_map<std::string, std::string> real_;
+  struct Folder {
+    std::optional<CardLocation> card;  // the card of its files
+    std::optional<std::string> sd;     // its SD path in that card
+  };
+  std::unordered_map<std::string, Folder> folders_;
+  std::unordered_map<std::string, std::optional<CardLocation>> roots_;  // folder -> sd_root_above
+};
 
 }  // namespace
 
 std::optional<fs::path> repo_root(const fs::path& start) {
-  static std::map<std::string, std::optional<fs::path>> memo;  // per folder: files share their folders
-  std::error_code ec;
-  fs::path dir = fs::absolute(start, ec).lexically_normal();
-  if (!dir.has_filename() && dir != dir.root_path()) dir = dir.parent_path();
-  auto [hit, fresh] = memo.try_emplace(dir.string());
-  if (!fresh) return hit->second;
-  std::optional<fs::path> result;
-  for (int guard = 0; guard < 256; ++guard) {
-    if (fs::exists(dir / ".git", ec)) {
-      result = dir;
-      break;
-    }
-    if (dir == dir.root_path() || !dir.has_parent_path() || dir.parent_path() == dir) break;
-    dir = dir.parent_path();
-  }
-  hit->second = result;
-  return result;
+  const auto& root = repo_of(absolute_normal(start));
+  if (!root) return std::nullopt;
+  return fs::path(*root);
 }
 
-void GitIgnore::prefetch(const std::vector<fs::path>& files) {
-  std::map<std::string, std::vector<fs::path>> by_repo;
-  for (const fs::path& f : files) {
-    if (cache_.count(f.string())) continue;
-    if (auto root = repo_root(f.parent_path())) by_repo[root->string()].push_back(f);
+void GitIgnore::prefetch(const std::vector<std::string>& files) {
+  std::map<std::string, std::vector<const std::string*>> by_repo;
+  for (const std::string& f : files) {
+    if (cache_.count(f)) continue;
+    if (const auto& root = repo_of(parent_of(f)); root && !no_git_.count(*root)) by_repo[*root].push_back(&f);
   }
   for (auto& [root, list] : by_repo) {
     char tmpl[] = "/tmp/rrflint-ignore-XXXXXX";
     int fd = mkstemp(tmpl);
     if (fd < 0) continue;
     std::string input;
-    for (const fs::path& f : list) {
-      auto rel = relative_below(f, root);
-      input += rel ? *rel : f.string();
+    for (const std::string* f : list) {
+      auto rel = path_below(*f, root);
+      input += rel ? *rel : *f;
       input += '\0';
     }
     bool ok = ::write(fd, input.data(), input.size()) == static_cast<ssize_t>(input.size());
@@ -153,7 +195,10 @@ void GitIgnore::prefetch(const std::vector<fs::path>& files) {
     }
     ::unlink(tmpl);
     const int code = status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    if (code != 0 && code != 1) continue;  // no git, or not a work tree: the fallback matcher answers later
+    if (code != 0 && code != 1) {  // no git, or not a work tree: the fallback matcher answers
+      no_git_.insert(root);
+      continue;
+    }
     std::set<std::string> ignored;
     for (size_t b = 0; b < out.size();) {
       size_t e = out.find('\0', b);
@@ -161,79 +206,86 @@ void GitIgnore::prefetch(const std::vector<fs::path>& files) {
       ignored.insert((fs::path(root) / out.substr(b, e - b)).lexically_normal().string());
       b = e + 1;
     }
-    for (const fs::path& f : list) cache_[f.string()] = ignored.count(f.lexically_normal().string()) > 0;
+    for (const std::string* f : list) cache_[*f] = ignored.count(*f) > 0;
   }
 }
 
-bool GitIgnore::ignored(const fs::path& abs) {
-  if (auto it = cache_.find(abs.string()); it != cache_.end()) return it->second;
-  prefetch({abs});
-  if (auto it = cache_.find(abs.string()); it != cache_.end()) return it->second;
-  bool r = fallback_ignored(abs);
-  cache_[abs.string()] = r;
-  return r;
+bool GitIgnore::ignored(const std::string& abs) {
+  if (auto it = cache_.find(abs); it != cache_.end()) return it->second;
+  const std::string dir = parent_of(abs);
+  if (const auto& root = repo_of(dir); root && !no_git_.count(*root)) {
+    prefetch({abs});
+    if (auto it = cache_.find(abs); it != cache_.end()) return it->second;
+  }
+  // Without git: the .gitignore files from the repository top (or the file-system root) down to the file. A
+  // folder that is ignored hides everything below it.
+  const Folder& f = folder(dir);
+  if (!f.patterns) return false;  // the usual case: no .gitignore anywhere above the file
+  return f.ignored || verdict(abs, false, f.chain);
 }
 
-// Without git: the .gitignore files from the repository root (or the file-system root) down to the file.
-// Supports comments, `!` negation, a trailing `/` (folders only), anchoring by `/`, `*`, `?`, `**`, `[…]`.
-bool GitIgnore::fallback_ignored(const fs::path& abs) {
-  std::error_code ec;
-  std::vector<fs::path> dirs;  // from the top down
-  for (fs::path d = abs.parent_path();; d = d.parent_path()) {
-    dirs.insert(dirs.begin(), d);
-    if (fs::exists(d / ".git", ec) || d == d.root_path() || !d.has_parent_path() || d.parent_path() == d) break;
+// A folder's .gitignore. Supports comments, `!` negation, a trailing `/` (folders only), anchoring by `/`, `*`,
+// `?`, `**`, `[…]`.
+const std::vector<GitIgnore::Pattern>& GitIgnore::patterns(const std::string& dir) {
+  if (auto it = patterns_.find(dir); it != patterns_.end()) return it->second;
+  std::vector<Pattern> pats;
+  const std::string text = read_file(join_path(dir, ".gitignore"), nullptr).value_or(std::string());
+  for (size_t b = 0; b < text.size();) {
+    size_t e = text.find('\n', b);
+    if (e == std::string::npos) e = text.size();
+    std::string line = text.substr(b, e - b);
+    b = e + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    if (line.empty() || line.front() == '#') continue;
+    Pattern p;
+    p.negated = line.front() == '!';
+    if (p.negated) line.erase(0, 1);
+    if (line.starts_with("\\")) line.erase(0, 1);
+    p.dir_only = line.ends_with("/");
+    while (line.ends_with("/")) line.pop_back();
+    if (line.empty()) continue;
+    p.anchored = line.find('/') != std::string::npos;
+    if (line.starts_with("/")) line.erase(0, 1);
+    p.glob = std::move(line);
+    pats.push_back(std::move(p));
   }
-  auto load = [&](const fs::path& d) -> const std::vector<std::pair<std::string, bool>>& {
-    auto it = patterns_.find(d.string());
-    if (it != patterns_.end()) return it->second;
-    std::vector<std::pair<std::string, bool>> pats;
-    std::ifstream in(d / ".gitignore");
-    std::string line;
-    while (std::getline(in, line)) {
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      while (!line.empty() && line.back() == ' ') line.pop_back();
-      if (line.empty() || line.front() == '#') continue;
-      bool neg = line.front() == '!';
-      if (neg) line.erase(0, 1);
-      if (line.starts_with("\\")) line.erase(0, 1);
-      if (!line.empty()) pats.emplace_back(line, neg);
-    }
-    return patterns_.emplace(d.string(), std::move(pats)).first->second;
-  };
-  // The verdict for one path (a folder or the file), from every .gitignore above it; the last match wins.
-  auto verdict = [&](const fs::path& p, bool is_dir) {
-    std::optional<bool> result;
-    for (const fs::path& d : dirs) {
-      auto rel = relative_below(p, d);
-      if (!rel || rel->empty()) continue;
-      for (const auto& [pat, neg] : load(d)) {
-        std::string g = pat;
-        bool dir_only = g.ends_with("/");
-        while (g.ends_with("/")) g.pop_back();
-        if (g.empty() || (dir_only && !is_dir)) continue;
-        bool anchored = g.find('/') != std::string::npos;
-        if (g.starts_with("/")) g.erase(0, 1);
-        const std::string base = fs::path(*rel).filename().string();
-        if (anchored ? glob_match(g, *rel) : glob_match(g, base)) result = !neg;
-      }
-    }
-    return result.value_or(false);
-  };
-  // The usual case: no .gitignore anywhere above the file.
-  if (std::all_of(dirs.begin(), dirs.end(), [&](const fs::path& d) { return load(d).empty(); })) return false;
-  // A folder that is ignored hides everything below it (folder verdicts are cached: many files share them).
-  for (size_t i = 1; i < dirs.size(); ++i) {
-    auto [it, fresh] = dir_cache_.try_emplace(dirs[i].string(), false);
-    if (fresh) it->second = verdict(dirs[i], true);
-    if (it->second) return true;
+  return patterns_.emplace(dir, std::move(pats)).first->second;
+}
+
+const GitIgnore::Folder& GitIgnore::folder(const std::string& dir) {
+  if (auto it = folders_.find(dir); it != folders_.end()) return it->second;
+  Folder f;
+  const auto& repo = repo_of(dir);
+  if (dir != "/" && !(repo && *repo == dir)) {  // below the top: the folders above apply too
+    const Folder& above = folder(parent_of(dir));
+    f = above;
+    f.ignored = above.ignored || (above.patterns && verdict(dir, true, above.chain));
   }
-  return verdict(abs, false);
+  f.chain.push_back(dir);
+  f.patterns = f.patterns || !patterns(dir).empty();
+  return folders_.emplace(dir, std::move(f)).first->second;
+}
+
+// The verdict for one path (a folder or a file) from the .gitignore files of `chain`; the last match wins.
+bool GitIgnore::verdict(const std::string& path, bool is_dir, const std::vector<std::string>& chain) {
+  std::optional<bool> result;
+  for (const std::string& d : chain) {
+    auto rel = path_below(path, d);
+    if (!rel || rel->empty()) continue;
+    const std::string_view base = name_of(*rel);
+    for (const Pattern& p : patterns(d)) {
+      if (p.dir_only && !is_dir) continue;
+      if (p.anchored ? glob_match(p.glob, *rel) : glob_match(p.glob, base)) result = !p.negated;
+    }
+  }
+  return result.value_or(false);
 }
 
 JobReader::JobReader(const Job& job) : job_(job) {
   std::error_code ec;
   if (job.card) {
-    disk_ = std::make_unique<DiskReader>(job.card->root, job.card->sys_dir, fs::current_path(ec));
+    disk_ = std::make_unique<DiskReader>(job.card->root, job.card->sys_dir, fs::current_path(ec), job.dirs);
     if (job.stdin_bytes) disk_->overlay(job.stdin_sd_path, *job.stdin_bytes);
     return;
   }
@@ -282,42 +334,40 @@ std::vector<std::string> JobReader::list(std::string_view sd_dir) {
   return {};
 }
 
-std::optional<fs::path> JobReader::disk_path(std::string_view sd_path) const {
+std::optional<std::string> JobReader::disk_path(std::string_view sd_path) const {
   if (disk_) {
     if (job_.stdin_bytes && to_lower(sd_path) == to_lower(job_.stdin_sd_path)) return std::nullopt;
     return disk_->locate(sd_path);
   }
   if (job_.stdin_bytes || to_lower(sd_path) != to_lower(lone_sd_)) return std::nullopt;
-  return job_.standalone;
+  return job_.standalone.string();
 }
 
-void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, std::vector<Job>& jobs,
-          bool& io_error) {
+void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
+          std::vector<Job>& jobs, bool& io_error) {
   std::error_code ec;
-  const fs::path cwd = fs::current_path(ec);
-  std::map<std::string, size_t> by_root;
-  GitIgnore gitignore;
-  auto show = [&](const fs::path& p) {
-    auto rel = relative_below(p, cwd);
-    return rel ? (rel->empty() ? std::string(".") : *rel) : p.string();
+  const std::string cwd = absolute_normal(fs::current_path(ec));
+  std::map<std::string, size_t> by_root;               // canonical sys folder -> job
+  std::unordered_map<std::string, size_t> by_sys;      // sys folder as the card gave it -> job
+  Folders folders;
+  auto show = [&](const std::string& abs) {
+    auto rel = path_below(abs, cwd);
+    return rel ? (rel->empty() ? std::string(".") : *rel) : abs;
   };
-  auto job_for_card = [&](CardLocation c, const std::string& title) -> Job& {
-    c.root = fs::absolute(c.root, ec).lexically_normal();
-    c.sys_dir = fs::absolute(c.sys_dir, ec).lexically_normal();
-    if (!c.root.has_filename() && c.root != c.root.root_path()) c.root = c.root.parent_path();
-    if (!c.sys_dir.has_filename() && c.sys_dir != c.sys_dir.root_path()) c.sys_dir = c.sys_dir.parent_path();
-    std::string key = fs::weakly_canonical(c.sys_dir, ec).string();
-    if (auto it = by_root.find(key); it != by_root.end()) return jobs[it->second];
-    Job j;
-    j.card = c;
-    j.title = title;
-    jobs.push_back(j);
-    by_root[key] = jobs.size() - 1;
-    return jobs.back();
-  };
-  auto sd_of = [&](const CardLocation& c, const fs::path& file) -> std::optional<std::string> {
-    DiskReader probe(c.root, c.sys_dir, cwd);
-    return probe.sd_path_of(fs::absolute(file, ec));
+  auto job_for_card = [&](const CardLocation& card, const std::string& title) -> Job& {
+    if (auto it = by_sys.find(card.sys_dir.native()); it != by_sys.end()) return jobs[it->second];
+    CardLocation c{absolute_normal(card.root), absolute_normal(card.sys_dir)};
+    const std::string key = folders.real_path(c.sys_dir.native());
+    auto [it, fresh] = by_root.try_emplace(key, jobs.size());
+    if (fresh) {
+      Job j;
+      j.card = c;
+      j.title = title;
+      j.dirs = folders.dirs();
+      jobs.push_back(j);
+    }
+    by_sys.emplace(card.sys_dir.native(), it->second);
+    return jobs[it->second];
   };
   auto lone = [&](const fs::path& file, const std::string& title, bool explicit_path) {
     Job j;
@@ -326,13 +376,28 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     j.explicit_path = explicit_path;
     jobs.push_back(j);
   };
+  // Files and folders met in a walk (absolute, normal); `link`: the file is a symbolic link.
+  std::vector<std::string> found;
+  std::vector<bool> link;
+  auto walk = [&](auto& self, const std::string& dir, int depth, bool below_macros) -> void {
+    for (const DirEntry& e : folders.entries(dir)) {
+      std::string path = join_path(dir, e.name);
+      if (e.kind == DirEntry::Kind::Dir) {
+        if (depth > 12 || e.name.starts_with(".") || settings.excluded(join_path(path, kAnyChild)) || e.link) continue;
+        self(self, path, depth + 1, below_macros || to_lower(e.name) == "macros");
+      } else if (e.kind == DirEntry::Kind::File && candidate(e.name, below_macros)) {
+        found.push_back(std::move(path));
+        link.push_back(e.link);
+      }
+    }
+  };
 
   for (const std::string& p : paths) {
     if (p == "-") {
       std::string bytes((std::istreambuf_iterator<char>(std::cin)), {});
       fs::path name = po.stdin_filename.empty() ? fs::path("stdin.g") : fs::path(po.stdin_filename);
       if (!po.stdin_filename.empty()) {
-        const fs::path abs = fs::absolute(name, ec).lexically_normal();
+        const std::string abs = absolute_normal(name);
         if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) {
           Job j;
           j.standalone = name;
@@ -342,15 +407,13 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
           jobs.push_back(j);
           continue;
         }
-        if (auto card = card_for(abs)) {
-          if (auto sd = sd_of(*card, abs); sd && machine_path(*sd)) {
-            Job& j = job_for_card(*card, po.stdin_filename);
-            j.only.insert(to_lower(*sd));
-            j.stdin_bytes = bytes;
-            j.stdin_sd_path = *sd;
-            j.explicit_path = true;
-            continue;
-          }
+        if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+          Job& j = job_for_card(*at.card, po.stdin_filename);
+          j.only.insert(to_lower(*at.sd));
+          j.stdin_bytes = bytes;
+          j.stdin_sd_path = *at.sd;
+          j.explicit_path = true;
+          continue;
         }
       }
       Job j;
@@ -367,62 +430,54 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       io_error = true;
       continue;
     }
-    const fs::path abs = fs::absolute(path, ec).lexically_normal();
+    const std::string abs = absolute_normal(path);
     if (fs::is_directory(path, ec)) {
-      if (po.force_exclude && settings.excluded(abs / kAnyChild)) continue;
+      if (po.force_exclude && settings.excluded(join_path(abs, kAnyChild))) continue;
       if (auto card = card_at(path)) {
         // A folder holding config.g inside a card's sys/ (a module folder) is walked as part of that card.
-        auto outer = sd_root_above(abs);
+        const auto& outer = folders.sd_root_above(abs);
         const bool nested = outer && fs::equivalent(card->sys_dir, abs, ec) && !fs::equivalent(outer->sys_dir, abs, ec);
         if (!nested) {
           job_for_card(*card, p).report_all = true;
           continue;
         }
       }
-      // Walk the folder: candidate files, minus .gitignore and `exclude`.
-      std::vector<fs::path> found;
-      for (fs::recursive_directory_iterator it(path, fs::directory_options::skip_permission_denied, ec), end;
-           !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        if (it->is_directory(ec)) {
-          if (it.depth() > 12 || name.starts_with(".") || settings.excluded(fs::absolute(it->path(), ec) / kAnyChild))
-            it.disable_recursion_pending();
-          continue;
-        }
-        if (!it->is_regular_file(ec) || !candidate(it->path())) continue;
-        found.push_back(fs::absolute(it->path(), ec).lexically_normal());
-      }
+      // Walk the folder: candidate files (`*.g`, and files without extension below a macros/ folder, which may
+      // be the walked folder or one above it as the path names it), minus .gitignore and `exclude`.
+      bool below_macros = false;
+      for (const fs::path& part : path) below_macros = below_macros || to_lower(part.string()) == "macros";
+      found.clear();
+      link.clear();
+      walk(walk, abs, 0, below_macros);
       if (settings.config_error()) return;
       if (po.respect_gitignore) gitignore.prefetch(found);
-      for (const fs::path& f : found) {
+      for (size_t i = 0; i < found.size(); ++i) {
+        const std::string& f = found[i];
         if (settings.excluded(f) || (po.respect_gitignore && gitignore.ignored(f))) continue;
-        auto card = card_for(f);
-        std::optional<std::string> sd = card ? sd_of(*card, f) : std::nullopt;
-        if (!card || !sd || !machine_path(*sd)) {
+        const Folders::Place at = folders.place(f, link[i]);
+        if (!at.card || !at.sd || !machine_path(*at.sd)) {
           lone(f, show(f), false);
           continue;
         }
-        Job& j = job_for_card(*card, show(card->root));
-        if (is_ancestor(abs, card->root)) j.report_all = true;  // the walk covers the whole card
-        else j.only.insert(to_lower(*sd));
+        Job& j = job_for_card(*at.card, show(at.card->root));
+        if (path_below(at.card->root.native(), abs)) j.report_all = true;  // the walk covers the whole card
+        else j.only.insert(to_lower(*at.sd));
       }
       continue;
     }
     // An explicit file: linted even when excluded, unless --force-exclude.
     if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) continue;
     std::string err;
-    if (!read_file(path, &err)) {
+    if (!read_file(p, &err)) {
       error(fmt::format("{}: {}", p, err));
       io_error = true;
       continue;
     }
-    if (auto card = card_for(abs)) {
-      if (auto sd = sd_of(*card, abs); sd && machine_path(*sd)) {
-        Job& j = job_for_card(*card, p);
-        j.only.insert(to_lower(*sd));
-        j.explicit_path = true;
-        continue;
-      }
+    if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+      Job& j = job_for_card(*at.card, p);
+      j.only.insert(to_lower(*at.sd));
+      j.explicit_path = true;
+      continue;
     }
     lone(path, p, true);
   }

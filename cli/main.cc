@@ -161,7 +161,8 @@ int main(int argc, char** argv) {
     Settings settings(cli);
     std::vector<Job> jobs;
     bool io_error = false;
-    plan({model_path}, PlanOptions{}, settings, jobs, io_error);
+    GitIgnore gitignore;
+    plan({model_path}, PlanOptions{}, settings, gitignore, jobs, io_error);
     if (settings.config_error()) {
       error(settings.config_error()->str());
       return kExitError;

@@ -21,31 +21,22 @@ std::string quoted_list(const std::vector<std::string>& v) {
 void error(const std::string& msg) { std::cerr << "rrflint: error: " << msg << "\n"; }
 void warning(const std::string& msg) { std::cerr << "rrflint: warning: " << msg << "\n"; }
 
-std::shared_ptr<const Config> Settings::config_for(const fs::path& dir) {
+std::shared_ptr<const Config> Settings::config_for(const std::string& dir) {
   if (cli_.isolated) return nullptr;
+  // Memoised per folder as spelled (callers pass absolute, normal folders): files share their folders.
+  auto [memo, fresh] = by_folder_.try_emplace(dir);
+  if (!fresh) return memo->second;
   std::error_code ec;
-  std::optional<fs::path> file;
-  if (!cli_.config_path.empty()) {
-    file = fs::absolute(cli_.config_path, ec);
-  } else {
-    const std::string key = fs::absolute(dir, ec).lexically_normal().string();
-    auto it = found_.find(key);
-    if (it == found_.end()) it = found_.emplace(key, find_config(dir)).first;
-    file = it->second;
-  }
+  const std::optional<fs::path> file =
+      cli_.config_path.empty() ? find_config(dir) : std::optional(fs::absolute(cli_.config_path, ec));
   if (!file) return nullptr;
-  const std::string key = file->lexically_normal().string();
-  if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
-  ConfigError err;
-  auto cfg = load_config(*file, &err);
-  if (!cfg) {
-    if (!error_) error_ = err;
-    loaded_[key] = nullptr;
-    return nullptr;
+  auto [it, unread] = loaded_.try_emplace(file->lexically_normal().string());
+  if (unread) {
+    ConfigError err;
+    if (auto cfg = load_config(*file, &err)) it->second = std::make_shared<const Config>(std::move(*cfg));
+    else if (!error_) error_ = err;
   }
-  auto ptr = std::make_shared<const Config>(std::move(*cfg));
-  loaded_[key] = ptr;
-  return ptr;
+  return memo->second = it->second;
 }
 
 std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli) {
@@ -80,18 +71,29 @@ std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli)
 }
 
 bool Settings::effective(const fs::path& dir, Effective& out) {
-  out = Effective{};
-  out.config = config_for(dir);
+  std::shared_ptr<const Config> config = config_for(dir);
   if (error_) return false;
+  // The settings depend only on the config file: worked out once for each.
+  auto [memo, fresh] = effective_.try_emplace(config.get());
+  if (fresh) resolve(std::move(config), memo->second);
+  out = memo->second;
+  return true;
+}
+
+void Settings::resolve(std::shared_ptr<const Config> config, Effective& out) {
+  out.config = std::move(config);
   const Config* cfg = out.config.get();
   std::vector<std::string> on;
-  for (const RuleDecision& d : decide_rules(cfg, cli_))
+  bool as_default = true;  // exactly the rules on by default
+  for (const RuleDecision& d : decide_rules(cfg, cli_)) {
     if (d.on) on.emplace_back(d.rule->meta.code);
+    as_default = as_default && d.on == d.rule->meta.default_enabled;
+  }
   if (on.empty()) {
     out.lint.select = {"ALL"};
     out.lint.ignore = {"ALL"};
-  } else {
-    out.lint.select = on;
+  } else if (!as_default) {
+    out.lint.select = on;  // the default set is left implicit (an empty select): no names for the core to look up
   }
   if (!cli_.firmware.empty()) out.lint.firmware = Version::parse(cli_.firmware);
   else if (cfg && cfg->firmware.value) out.lint.firmware = cfg->firmware.value;
@@ -120,11 +122,11 @@ bool Settings::effective(const fs::path& dir, Effective& out) {
       return false;
     };
   }
-  return true;
 }
 
-bool Settings::excluded(const fs::path& abs, std::string* why) {
-  auto cfg = config_for(abs.parent_path());
+bool Settings::excluded(const std::string& abs, std::string* why) {
+  if (cli_.isolated) return false;  // no config file: nothing is excluded
+  auto cfg = config_for(parent_of(abs));
   if (!cfg) return false;
   for (const PathPattern& p : cfg->exclude) {
     auto rel = relative_below(abs, p.base);

@@ -1,126 +1,181 @@
 #include "disk.h"
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <fstream>
+#include <cerrno>
 #include <system_error>
 
 namespace fs = std::filesystem;
 
 namespace rrflint {
-namespace {
+const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_view name,
+                           std::optional<DirEntry::Kind> kind) {
+  auto wanted = [&](const DirEntry& e) { return !kind || e.kind == *kind; };
+  for (const DirEntry& e : entries)
+    if (e.name == name && wanted(e)) return &e;
+  const std::string lower = to_lower(name);
+  for (const DirEntry& e : entries)
+    if (wanted(e) && to_lower(e.name) == lower) return &e;
+  return nullptr;
+}
 
-std::optional<fs::path> find_ci(const fs::path& dir, const std::string& name) {
-  std::error_code ec;
-  fs::path exact = dir / name;
-  if (fs::exists(exact, ec)) return exact;
-  const std::string want = to_lower(name);
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (to_lower(it->path().filename().string()) == want) return it->path();
+bool has_config(const fs::path& dir) { return has_config(list_dir(dir)); }
+
+bool has_config(const std::vector<DirEntry>& entries) {
+  const DirEntry* c = find_entry(entries, "config.g");
+  return c && c->kind == DirEntry::Kind::File;
+}
+
+std::vector<DirEntry> list_dir(const std::string& dir) {
+  std::vector<DirEntry> out;
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return out;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string_view name(e->d_name);
+    if (name == "." || name == "..") continue;
+    DirEntry entry{std::string(name), DirEntry::Kind::Other, false};
+    unsigned char type = e->d_type;
+    struct stat st;
+    if (type == DT_UNKNOWN && ::fstatat(::dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0)
+      type = S_ISLNK(st.st_mode) ? DT_LNK : S_ISDIR(st.st_mode) ? DT_DIR : S_ISREG(st.st_mode) ? DT_REG : DT_UNKNOWN;
+    if (type == DT_LNK) {
+      entry.link = true;
+      if (::fstatat(::dirfd(d), e->d_name, &st, 0) == 0)
+        type = S_ISDIR(st.st_mode) ? DT_DIR : S_ISREG(st.st_mode) ? DT_REG : DT_UNKNOWN;
+    }
+    if (type == DT_REG) entry.kind = DirEntry::Kind::File;
+    else if (type == DT_DIR) entry.kind = DirEntry::Kind::Dir;
+    out.push_back(std::move(entry));
+  }
+  ::closedir(d);
+  return out;
+}
+
+std::string join_path(const std::string& dir, std::string_view name) {
+  std::string out;
+  out.reserve(dir.size() + 1 + name.size());
+  out = dir;
+  if (!out.ends_with('/')) out += '/';
+  out += name;
+  return out;
+}
+
+std::string parent_of(std::string_view abs) {
+  const size_t slash = abs.rfind('/');
+  return slash == 0 || slash == std::string_view::npos ? std::string("/") : std::string(abs.substr(0, slash));
+}
+
+std::string_view name_of(std::string_view path) { return path.substr(path.rfind('/') + 1); }
+
+std::optional<std::string> path_below(std::string_view abs, std::string_view base) {
+  if (abs == base) return std::string();
+  if (base == "/") return abs.starts_with('/') ? std::optional<std::string>(abs.substr(1)) : std::nullopt;
+  if (abs.size() > base.size() && abs.starts_with(base) && abs[base.size()] == '/')
+    return std::string(abs.substr(base.size() + 1));
   return std::nullopt;
 }
 
-}  // namespace
-
-bool has_config(const fs::path& dir) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return false;
-  auto c = find_ci(dir, "config.g");
-  return c && fs::is_regular_file(*c, ec);
-}
-
-std::optional<std::string> read_file(const fs::path& p, std::string* error) {
-  std::error_code ec;
-  if (fs::is_directory(p, ec)) {
-    if (error) *error = "is a directory";
+std::optional<std::string> read_file(const std::string& path, std::string* error) {
+  auto fail = [&](const char* why) -> std::optional<std::string> {
+    if (error) *error = why;
     return std::nullopt;
+  };
+  struct stat st;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (!error) return std::nullopt;
+    if (::stat(path.c_str(), &st) != 0) return fail("no such file");
+    return fail(S_ISDIR(st.st_mode) ? "is a directory" : "permission denied or unreadable");
   }
-  std::ifstream in(p, std::ios::binary);
-  if (!in) {
-    if (error) *error = fs::exists(p, ec) ? "permission denied or unreadable" : "no such file";
-    return std::nullopt;
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  if (::fstat(fd, &st) != 0) return fail("read error");
+  if (S_ISDIR(st.st_mode)) return fail("is a directory");
+  // A file with a size: that many bytes (the file as it was when opened). Without one (empty, a pipe, /proc):
+  // on to the end.
+  const bool sized = S_ISREG(st.st_mode) && st.st_size > 0;
+  std::string s(sized ? static_cast<size_t>(st.st_size) : 0, '\0');
+  size_t got = 0;
+  char more[4096];
+  while (!sized || got < s.size()) {
+    const ssize_t n = sized ? ::read(fd, s.data() + got, s.size() - got) : ::read(fd, more, sizeof more);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return fail("read error");
+    }
+    if (n == 0) break;
+    if (sized) got += static_cast<size_t>(n);
+    else s.append(more, static_cast<size_t>(n)), got = s.size();
   }
-  std::string s;
-  in.seekg(0, std::ios::end);
-  auto size = in.tellg();
-  if (size > 0) {
-    s.resize(static_cast<size_t>(size));
-    in.seekg(0);
-    in.read(s.data(), size);
-  } else {
-    s.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  if (in.bad()) {
-    if (error) *error = "read error";
-    return std::nullopt;
-  }
+  s.resize(got);
   return s;
 }
 
-DiskReader::DiskReader(fs::path root, fs::path sys_dir, fs::path display_base)
-    : root_(std::move(root)), sys_(std::move(sys_dir)), base_(std::move(display_base)) {}
+std::string absolute_normal(const fs::path& p) {
+  std::error_code ec;
+  std::string s = fs::absolute(p, ec).lexically_normal().string();
+  if (s.size() > 1 && s.ends_with('/')) s.pop_back();
+  return s;
+}
+
+const DirCache::Listing& DirCache::get(const std::string& dir) {
+  auto [it, fresh] = listings_.try_emplace(dir);
+  if (fresh) {
+    Listing& l = it->second;
+    l.entries = list_dir(dir);
+    for (size_t i = 0; i < l.entries.size(); ++i) l.by_lower.try_emplace(to_lower(l.entries[i].name), i);
+  }
+  return it->second;
+}
+
+DiskReader::DiskReader(fs::path root, fs::path sys_dir, fs::path display_base, std::shared_ptr<DirCache> dirs)
+    : root_(absolute_normal(root)),
+      sys_(absolute_normal(sys_dir)),
+      base_(absolute_normal(display_base)),
+      dirs_(dirs ? std::move(dirs) : std::make_shared<DirCache>()) {}
 
 fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
   std::string d(sd_dir);
-  if (to_lower(d) == "/sys" || to_lower(d).starts_with("/sys/")) return sys_ / d.substr(std::min<size_t>(d.size(), 5));
-  return root_ / (d.starts_with("/") ? d.substr(1) : d);
+  if (to_lower(d) == "/sys" || to_lower(d).starts_with("/sys/"))
+    return fs::path(sys_) / d.substr(std::min<size_t>(d.size(), 5));
+  return fs::path(root_) / (d.starts_with("/") ? d.substr(1) : d);
 }
 
-std::optional<fs::path> DiskReader::child(const fs::path& dir, const std::string& name) const {
-  auto [it, fresh] = listings_.try_emplace(dir.string());
-  if (fresh) {
-    std::error_code ec;
-    for (fs::directory_iterator d(dir, ec), end; !ec && d != end; d.increment(ec))
-      it->second.emplace(to_lower(d->path().filename().string()), d->path());
-  }
-  auto hit = it->second.find(to_lower(name));
-  if (hit == it->second.end()) return std::nullopt;
-  return hit->second;
-}
-
-std::optional<fs::path> DiskReader::locate(std::string_view sd_path) const { return locate_spelled(sd_path, nullptr); }
-
-std::optional<fs::path> DiskReader::locate_spelled(std::string_view sd_path, std::string* spelled) const {
-  std::string p(sd_path);
-  fs::path cur;
-  std::string rest;
-  std::string out;
-  if (to_lower(p).starts_with("/sys/")) {
+std::optional<std::string> DiskReader::locate(std::string_view sd_path, std::string* spelled) const {
+  std::string cur, out;
+  std::string_view rest;
+  if (sd_path.size() >= 5 && to_lower(sd_path.substr(0, 5)) == "/sys/") {
     cur = sys_;
-    rest = p.substr(5);
+    rest = sd_path.substr(5);
     out = "/sys";
   } else {
     cur = root_;
-    rest = p.starts_with("/") ? p.substr(1) : p;
+    rest = sd_path.starts_with('/') ? sd_path.substr(1) : sd_path;
   }
   size_t start = 0;
   while (start <= rest.size()) {
-    size_t slash = rest.find('/', start);
-    std::string seg = rest.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    const size_t slash = rest.find('/', start);
+    const std::string_view seg = rest.substr(start, slash == std::string_view::npos ? slash : slash - start);
     if (!seg.empty()) {
-      auto next = child(cur, seg);
-      if (!next) return std::nullopt;
-      cur = *next;
-      out += "/" + cur.filename().string();
+      const DirCache::Listing& l = dirs_->get(cur);
+      auto hit = l.by_lower.find(to_lower(seg));
+      if (hit == l.by_lower.end()) return std::nullopt;
+      const std::string& name = l.entries[hit->second].name;
+      cur = join_path(cur, name);
+      out += '/';
+      out += name;
     }
-    if (slash == std::string::npos) break;
+    if (slash == std::string_view::npos) break;
     start = slash + 1;
   }
   if (spelled) *spelled = out.empty() ? "/" : out;
   return cur;
-}
-
-std::optional<std::string> DiskReader::sd_path_of(const fs::path& p) const {
-  std::error_code ec;
-  fs::path abs = fs::weakly_canonical(p, ec);
-  for (auto [base, prefix] : {std::pair{sys_, std::string("/sys")}, std::pair{root_, std::string("")}}) {
-    fs::path b = fs::weakly_canonical(base, ec);
-    auto rel = abs.lexically_relative(b);
-    if (rel.empty() || rel.native().starts_with("..")) continue;
-    std::string r = rel.generic_string();
-    if (r == ".") r.clear();
-    return prefix + "/" + r;
-  }
-  return std::nullopt;
 }
 
 ReadResult DiskReader::read(std::string_view sd_path) {
@@ -130,17 +185,17 @@ ReadResult DiskReader::read(std::string_view sd_path) {
     r.bytes = it->second;
     r.sd_path = std::string(sd_path);
     auto where = locate(sd_path);
-    r.display = where ? where->lexically_relative(base_).generic_string() : std::string(sd_path);
+    r.display = where ? fs::path(*where).lexically_relative(base_).generic_string() : std::string(sd_path);
     if (!where) r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
     return r;
   }
   std::string spelled;
-  auto where = locate_spelled(sd_path, &spelled);
+  auto where = locate(sd_path, &spelled);
   if (!where) return r;
   std::string err;
   auto bytes = read_file(*where, &err);
-  fs::path rel = where->lexically_relative(base_);
-  r.display = (rel.empty() || rel.native().starts_with("..")) ? where->generic_string() : rel.generic_string();
+  auto rel = path_below(*where, base_);
+  r.display = !rel || rel->starts_with("..") ? *where : rel->empty() ? std::string(".") : std::move(*rel);
   if (!bytes) {
     r.status = ReadResult::Status::Error;
     r.error = err;
@@ -149,27 +204,27 @@ ReadResult DiskReader::read(std::string_view sd_path) {
   r.status = ReadResult::Status::Ok;
   r.bytes = std::move(*bytes);
   // The SD path with the real case of the file name.
-  r.sd_path = spelled;
+  r.sd_path = std::move(spelled);
   return r;
+}
+
+void DiskReader::list_below(const std::string& dir, const std::string& sd_prefix, int depth,
+                            std::vector<std::string>& out) const {
+  for (const DirEntry& e : dirs_->get(dir).entries) {
+    if (e.kind == DirEntry::Kind::File) out.push_back(sd_prefix + e.name);
+    else if (e.kind == DirEntry::Kind::Dir && !e.link && depth < 8)  // at most 8 folders deep, as the SD card walk goes
+      list_below(join_path(dir, e.name), sd_prefix + e.name + "/", depth + 1, out);
+  }
 }
 
 std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
   std::vector<std::string> out;
   auto dir = locate(sd_dir);
-  std::error_code ec;
-  if (!dir || !fs::is_directory(*dir, ec)) return out;
-  for (fs::recursive_directory_iterator it(*dir, fs::directory_options::skip_permission_denied, ec), end;
-       !ec && it != end; it.increment(ec)) {
-    if (it.depth() > 8) {
-      it.disable_recursion_pending();
-      continue;
-    }
-    if (!it->is_regular_file(ec)) continue;
-    fs::path rel = it->path().lexically_relative(*dir);
-    std::string base(sd_dir);
-    if (!base.ends_with("/")) base += '/';
-    out.push_back(base + rel.generic_string());
-  }
+  struct stat st;
+  if (!dir || ::stat(dir->c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return out;
+  std::string base(sd_dir);
+  if (!base.ends_with("/")) base += '/';
+  list_below(*dir, base, 0, out);
   for (const auto& [k, v] : overlay_)
     if (k.starts_with(to_lower(std::string(sd_dir)) + "/")) out.push_back(k);
   std::sort(out.begin(), out.end());
@@ -180,7 +235,9 @@ std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
 std::optional<CardLocation> card_at(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return std::nullopt;
-  if (auto sys = find_ci(dir, "sys"); sys && has_config(*sys)) return CardLocation{dir, *sys};
+  const std::vector<DirEntry> entries = list_dir(dir);
+  if (const DirEntry* sys = find_entry(entries, "sys"); sys && has_config(dir / sys->name))
+    return CardLocation{dir, dir / sys->name};
   if (has_config(dir)) {
     fs::path abs = fs::absolute(dir, ec);
     if (abs.filename().empty()) abs = abs.parent_path();

@@ -332,6 +332,21 @@ TEST_CASE("cli: a repository walk finds every card, lone files and extensionless
   CHECK_FALSE(contains(o.out, "config.g"));
 }
 
+TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, however it is spelled", "[cli][walk]") {
+  TempTree t;
+  t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
+  t.write("a/sys/mod/config.g", "M9992\n");
+  t.write("a/sys/mod/x.g", "M9993\n");  // reached by nothing: linted as an entry of card a
+  const auto plain = run_rrflint(t.root(), "check a/sys/mod --format concise");
+  CHECK(contains(plain.out, "a/sys/mod/config.g:1:1"));
+  CHECK(contains(plain.out, "a/sys/mod/x.g:1:1"));
+  CHECK_FALSE(contains(plain.out, "a/sys/config.g"));
+  for (const char* spelled : {"a/sys/mod/", "./a/sys/mod", "a/sys/../sys/mod"}) {
+    INFO(spelled);
+    CHECK(run_rrflint(t.root(), std::string("check ") + spelled + " --format concise").out == plain.out);
+  }
+}
+
 TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
@@ -362,6 +377,29 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files onl
   CHECK(o.code == 0);
   o = run_rrflint(t.root(), "check . --format concise --no-respect-gitignore");
   CHECK(contains(o.out, "gen/out.g"));
+}
+
+TEST_CASE("cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns; git and the built-in matcher agree",
+          "[cli][walk]") {
+  TempTree t;
+  t.write("sub/.gitignore", "# comment\nkeep/*\n!keep/this.g\n/anch.g\ndironly/\n");
+  t.write("sub/keep/this.g", "M9991\n");    // ignored by keep/*, then un-ignored
+  t.write("sub/keep/that.g", "M9992\n");    // ignored
+  t.write("sub/anch.g", "M9993\n");         // ignored: anchored to sub/
+  t.write("sub/x/anch.g", "M9994\n");       // not: the pattern is anchored
+  t.write("sub/dironly/f.g", "M9995\n");    // ignored with its folder
+  t.write("sub/dironly.g", "M9996\n");      // not: dironly/ matches folders only
+  auto check_walk = [&](const std::string& label) {
+    INFO(label);
+    const std::string out = run_rrflint(t.root(), "check sub --format concise").out;
+    for (const char* code : {"M9991", "M9994", "M9996"}) CHECK(contains(out, code));
+    for (const char* code : {"M9992", "M9993", "M9995"}) CHECK_FALSE(contains(out, code));
+  };
+  check_walk("no repository: the built-in .gitignore matcher");
+  if (git_available()) {
+    REQUIRE(std::system(("git -C " + shell_quote(t.root().string()) + " init -q").c_str()) == 0);
+    check_walk("inside a git repository: git check-ignore");
+  }
 }
 
 TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url and fix", "[cli][docs]") {
