@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <unordered_map>
 
 #include "values.h"
 
@@ -63,6 +64,7 @@ class Builder {
   std::vector<uint32_t> stack_;  // units currently running (cycle detection)
   std::set<uint32_t> reached_;   // units run by the boot sequence
   int current_tool_ = -1;        // -1 none, -2 unknown
+  std::unordered_map<uint64_t, std::optional<std::string>> m98_paths_;  // (unit, command) -> M98 P, if known
 };
 
 void Builder::call(const std::string& name, CallKind kind, NodeId site, bool maybe, uint16_t depth, bool report_missing,
@@ -153,8 +155,13 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode});
     if (c.letter == 'M' && c.fraction < 0) {
       if (c.number == 98) {
-        auto p = get_string(pf, c, 'P');
-        if (p.known()) call(p.value, CallKind::M98, id, m, depth, true);
+        // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.
+        auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | ci);
+        if (fresh) {
+          auto p = get_string(pf, c, 'P');
+          if (p.known()) it->second = std::move(p.value);
+        }
+        if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
       } else if (c.number == 501) {
         call("config-override.g", CallKind::M501, id, m, depth, true);
       } else if (c.number == 505) {

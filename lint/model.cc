@@ -542,8 +542,8 @@ void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
     case 585: do_m585(x); break;
     case 98: {
       // A macro whose path is an expression may do anything: what it could create is unknown from here on.
-      auto P = get_string(x.pf, x.c, 'P');
-      if (P.unknown()) {
+      ParamRef P = x.pf.find(x.c, 'P');
+      if (P && is_unknown_string(*P)) {
         s.tools_known = s.axes_known = s.heaters_known = s.fans_known = s.sensors_known = s.probes_known = false;
         s.extruders_known = false;
       }

@@ -175,6 +175,8 @@ std::string unquote(std::string_view q) {
   std::string out;
   if (q.size() < 2 || q.front() != '"') return std::string(q);
   std::string_view body = q.substr(1, q.size() - 2);
+  if (body.find_first_of("\"'") == std::string_view::npos) return std::string(body);  // nothing to undo
+  out.reserve(body.size());
   for (size_t i = 0; i < body.size(); ++i) {
     char ch = body[i];
     if (ch == '"' && i + 1 < body.size() && body[i + 1] == '"') {
@@ -203,7 +205,7 @@ Val<std::string> get_string(const ParsedFile& pf, const Command& c, char letter)
   ParamRef p = pf.find(c, letter);
   if (!p) return v;
   v.param = p;
-  if (p->kind == ValueKind::Expression || (p->kind != ValueKind::String && p->has_expr)) return v.state = VState::Unknown, v;
+  if (is_unknown_string(*p)) return v.state = VState::Unknown, v;
   if (p->kind == ValueKind::String) {
     std::string_view raw = pf.text(p->value);
     if (raw.size() < 2 || raw.back() != '"') return v.state = VState::Bad, v;

@@ -47,6 +47,10 @@ Val<std::vector<DriverId>> get_driver_list(const ParsedFile& pf, const Command& 
 /// The items of a list parameter as spans, following RRF's rule that a blank before ':' ends the list.
 std::vector<Span> list_items(const ParsedFile& pf, const Param& p);
 
+/// Is a string parameter's value unknown here? (An expression; a quoted string is text even with braces.)
+inline bool is_unknown_string(const Param& p) {
+  return p.kind == ValueKind::Expression || (p.kind != ValueKind::String && p.has_expr);
+}
 /// Is this parameter value an expression or does it contain one?
 inline bool is_unknown_value(const Param& p) { return p.has_expr || p.kind == ValueKind::Expression; }
 
