@@ -150,8 +150,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   for (uint32_t ci = 0; ci < pf.commands.size(); ++ci) {
     if (full()) break;
     const Command& c = pf.commands[ci];
-    const Line& line = pf.lines[c.line];
-    const bool m = maybe || line.conditional || line.in_loop;
+    const bool m = maybe || pf.lines.in_block(c.line);
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode});
     if (c.letter == 'M' && c.fraction < 0) {
       if (c.number == 98) {

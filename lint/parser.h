@@ -20,6 +20,14 @@
 
 #include "source.h"
 
+// Decoding is inlined where a record is read, so that the compiler drops the fields a caller never reads (most
+// loops read a line's kind or a command's code only).
+#if defined(__GNUC__)
+#define RRFLINT_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define RRFLINT_ALWAYS_INLINE
+#endif
+
 namespace rrflint {
 
 struct ParsedFile;
@@ -178,7 +186,7 @@ class DecodingIterator {
   using reference = T;
   DecodingIterator() = default;
   DecodingIterator(const Table* t, size_t i) : t_(t), i_(i) {}
-  T operator*() const { return (*t_)[i_]; }
+  RRFLINT_ALWAYS_INLINE T operator*() const { return (*t_)[i_]; }
   T operator[](difference_type n) const { return (*t_)[i_ + n]; }
   DecodingIterator& operator++() { ++i_; return *this; }
   DecodingIterator operator++(int) { auto r = *this; ++i_; return r; }
@@ -220,6 +228,8 @@ class CommandTable {
 class LineTable {
  public:
   Line operator[](size_t i) const;
+  /// Line i's `conditional || in_loop`, without decoding the line (the graph asks for every command it runs).
+  bool in_block(size_t i) const { return recs_[i].flags & (detail::kConditional | detail::kInLoop); }
   size_t size() const { return recs_.size(); }
   bool empty() const { return recs_.empty(); }
   DecodingIterator<LineTable, Line> begin() const { return {this, 0}; }
@@ -295,7 +305,7 @@ struct ParsedFile {
   Line line_of(const Command& c) const { return lines[c.line]; }
 };
 
-inline Command CommandTable::operator[](size_t i) const {
+RRFLINT_ALWAYS_INLINE inline Command CommandTable::operator[](size_t i) const {
   const detail::CommandRec& r = recs_[i];
   Command c;
   c.span = Span{r.begin, r.end};
@@ -315,7 +325,7 @@ inline Command CommandTable::operator[](size_t i) const {
   return c;
 }
 
-inline Line LineTable::operator[](size_t i) const {
+RRFLINT_ALWAYS_INLINE inline Line LineTable::operator[](size_t i) const {
   const detail::LineRec& r = recs_[i];
   const std::string_view t = source_->text();
   Line l;
