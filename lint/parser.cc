@@ -24,6 +24,19 @@ constexpr MetaWord kMetaWords[] = {
     {"global", MetaKind::Global}, {"set", MetaKind::Set},     {"echo", MetaKind::Echo},     {"skip", MetaKind::Skip},
 };
 
+// Byte classes for the hot loops: a value runs over "plain" bytes without a second look; the code-end scan
+// stops only at bytes that can end the code or change quoting.
+struct ByteClasses {
+  bool value_stop[256] = {};  // '"', '{', '(', letters, '\'', ':'
+  bool code_stop[256] = {};   // '"', '{', '}', ';', '*', '('
+  constexpr ByteClasses() {
+    for (int c = 'A'; c <= 'Z'; ++c) value_stop[c] = value_stop[c + 32] = true;
+    for (unsigned char c : {'"', '{', '(', '\'', ':'}) value_stop[c] = true;
+    for (unsigned char c : {'"', '{', '}', ';', '*', '('}) code_stop[c] = true;
+  }
+};
+constexpr ByteClasses kBytes;
+
 // Commands whose one string argument needs no letter and runs to the end of the line (M117 text, M23 file).
 bool unlettered_string(const Command& c) {
   return c.letter == 'M' && c.fraction < 0 &&
@@ -117,6 +130,10 @@ uint32_t Lexer::parse_value(uint32_t p, uint32_t e, Param& param) const {
   uint32_t q = vb;
   bool colon = false;
   while (q < e) {
+    if (!kBytes.value_stop[static_cast<unsigned char>(t[q])]) {
+      ++q;
+      continue;
+    }
     const char c = t[q];
     if (c == '"') {
       q = skip_string(q, e);
@@ -380,11 +397,15 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool
     bool in_quote = false;
     int braces = 0;
     for (uint32_t k = p; k < e; ++k) {
-      const char c = t[k];
-      if (in_quote) {
-        if (c == '"') in_quote = false;  // "" re-enters at once: same result
+      if (in_quote) {  // to the closing quote ("" re-enters at once: same result)
+        const void* q = std::memchr(t.data() + k, '"', e - k);
+        if (!q) break;
+        k = static_cast<uint32_t>(static_cast<const char*>(q) - t.data());
+        in_quote = false;
         continue;
       }
+      const char c = t[k];
+      if (!kBytes.code_stop[static_cast<unsigned char>(c)]) continue;
       if (c == '"') {
         in_quote = true;
       } else if (c == '{') {
