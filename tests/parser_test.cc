@@ -8,6 +8,9 @@
 // Parameters: X=10 (number), E=[0.3:0.4] (colon list), P=<file.g> (unquoted text), S="x" (string),
 // T={…} (expression), X (no value), 'a=5 (lowercase axis), _=<text> (unlettered); suffix ^e = an E swallowed
 // as an exponent, ^b = a blank before ':' ended the list.
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +20,7 @@
 #include "lint/parser.h"
 
 using namespace rrflint;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -404,4 +408,41 @@ TEST_CASE("parser: stored line length", "[parser]") {
   CHECK(stored("G1 X{1 + 2}") == 11);
   CHECK(stored("G1 X5 (slow) Y6", ParseOptions{.cnc_mode = true}) == 9);
   CHECK(stored("G1 X5 (slow) Y6") == 15);
+}
+
+TEST_CASE("parser: parameters lexed on demand are those the parse counted", "[parser]") {
+  // The parse lexes parameters once for their errors and counts; ParamRange lexes them again from the stored
+  // command. Every fixture file (and the awkward lines below) must agree both ways.
+  std::vector<std::string> texts = {
+      "M117 \"unterminated\nM98 Pmacro.g ; old style\nT{1+1} P0\nG1 X1 Y2 X3 E1e3\nM584 'a1 'b2 X0:1 :2\n",
+      "M453\nG1 X1 (comment) Y2\nM451\nG1 X(1) Y2\nN10 G1 X5 *71 ; c\nG1 X{var.a ; cut}\n",
+      "M550 Pmy printer\nM23 \"file.g\"\nM32 {\"x\"}\nG10 P0 X0 Y0 Z0 G10 P1\n\tG1 X\"a\"\"b\" \x7f tail\n",
+  };
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(RRFLINT_SOURCE_DIR) / "fixtures"))
+    if (e.is_regular_file() && e.path().extension() == ".g") {
+      std::ifstream in(e.path(), std::ios::binary);
+      texts.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+  REQUIRE(texts.size() > 100);
+  size_t commands = 0;
+  for (const std::string& text : texts) {
+    Parsed p = parse_text(text);
+    for (const Command& c : p.pf.commands) {
+      ++commands;
+      uint32_t n = 0;
+      bool exponent = false, colon = false;
+      for (const Param& prm : p.pf.params(c)) {
+        ++n;
+        exponent = exponent || prm.exponent_letter;
+        colon = colon || prm.blank_before_colon;
+        CHECK(prm.span.begin >= c.span.begin);
+        CHECK(prm.span.end <= c.span.end);
+      }
+      INFO(text.substr(c.span.begin, c.span.size()));
+      CHECK(n == c.param_count);
+      CHECK(exponent == c.any_exponent);
+      CHECK(colon == c.any_blank_before_colon);
+    }
+  }
+  CHECK(commands > 1000);
 }
