@@ -542,7 +542,9 @@ void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
     case 585: do_m585(x); break;
     case 98: {
       // A macro whose path is an expression may do anything: what it could create is unknown from here on.
-      ParamRef P = x.pf.find(x.c, 'P');
+      // Only a '{' makes the path unknown: most M98 lines have none and need no parameter lexing.
+      const bool braces = x.pf.text(x.c.span).find('{') != std::string_view::npos;
+      ParamRef P = braces ? x.pf.find(x.c, 'P') : ParamRef();
       if (P && is_unknown_string(*P)) {
         s.tools_known = s.axes_known = s.heaters_known = s.fans_known = s.sensors_known = s.probes_known = false;
         s.extruders_known = false;

@@ -265,3 +265,23 @@ TEST_CASE("graph: Enter and Leave link to their call site", "[graph]") {
   CHECK(b->graph.segments[0].begin == 0);
   CHECK(b->graph.segments[0].end == 7);
 }
+
+TEST_CASE("graph: SD paths join and fold the way RRF's CombineName does", "[graph]") {
+  auto r = [](std::string_view dir, std::string_view name) { return resolve_sd_path(dir, name).value_or("<none>"); };
+  CHECK(r("/sys", "tpost0.g") == "/sys/tpost0.g");            // the plain case
+  CHECK(r("/sys", "macros/park.g") == "/sys/macros/park.g");
+  CHECK(r("/sys", "/macros/park.g") == "/macros/park.g");     // absolute
+  CHECK(r("/sys", "0:/macros/park.g") == "/macros/park.g");   // volume 0
+  CHECK(r("/sys", "0:macros/park.g") == "/macros/park.g");
+  CHECK(r("/sys", "1:/x.g") == "<none>");                     // another volume
+  CHECK(r("/sys", "../macros/park.g") == "/macros/park.g");   // folded
+  CHECK(r("/sys", "./a/./b.g") == "/sys/a/b.g");
+  CHECK(r("/sys", "a//b.g") == "/sys/a/b.g");
+  CHECK(r("/sys/", "a.g") == "/sys/a.g");
+  CHECK(r("/", "a.g") == "/a.g");
+  CHECK(r("/sys/sub", "..") == "/sys");
+  CHECK(r("/sys", "a..b.g") == "/sys/a..b.g");                // dots inside a name are a name
+  bool outside = false;
+  CHECK_FALSE(resolve_sd_path("/sys", "../../x.g", &outside));
+  CHECK(outside);
+}
