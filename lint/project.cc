@@ -39,17 +39,6 @@ std::vector<std::string> MemoryReader::list(std::string_view sd_dir) {
 
 std::optional<std::string> resolve_sd_path(std::string_view dir, std::string_view name, bool* outside_root) {
   if (outside_root) *outside_root = false;
-  // The usual case: a plain relative name ("tpost0.g", "macros/park.g") joined to a folder that is already
-  // normalised. Anything with a volume, '.', '..' or doubled slashes takes the general path below.
-  const bool plain_dir = dir.starts_with("/") && !dir.ends_with("/") && dir.find("//") == std::string_view::npos &&
-                         dir.find("/.") == std::string_view::npos;
-  if (plain_dir && !name.empty() && name.front() != '/' && name.front() != '.' && name.find(':') == std::string_view::npos &&
-      name.find("//") == std::string_view::npos && name.find("/.") == std::string_view::npos && !name.ends_with("/")) {
-    std::string out;
-    out.reserve(dir.size() + 1 + name.size());
-    out.append(dir).append("/").append(name);
-    return out;
-  }
   std::string full;
   if (name.size() >= 2 && name[0] >= '0' && name[0] <= '9' && name[1] == ':') {
     if (name[0] != '0') return std::nullopt;  // another volume
@@ -62,6 +51,10 @@ std::optional<std::string> resolve_sd_path(std::string_view dir, std::string_vie
     if (!full.ends_with("/")) full += '/';
     full += name;
   }
+  // The usual case: nothing to fold (no '.' or '..' segment, no doubled or trailing slash).
+  if (full.size() > 1 && full.find("//") == std::string::npos && full.find("/.") == std::string::npos &&
+      full.back() != '/')
+    return full;
   std::vector<std::string_view> parts;
   std::string_view rest = full;
   while (!rest.empty()) {
