@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
+#include <exception>
+#include <thread>
 #include <fstream>
 #include <iostream>
 #include <unordered_map>
@@ -24,8 +27,51 @@ struct Totals {
 };
 
 // One job: lint, then the requested rewrite, then collect what is to be reported.
+// A machine linted ahead, on a worker thread, with its own SourceManager (run_job adopts its files).
+struct Prelinted {
+  SourceManager sources;
+  MachineResult result;
+  std::exception_ptr error;
+};
+
+// Lints the machines of plain `check` runs on up to `threads` threads. Machines are independent: each has its
+// own reader and sources, and the rules keep no state. Settings are resolved first, on this thread.
+std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs, Settings& settings, unsigned threads) {
+  std::vector<std::unique_ptr<Prelinted>> out(jobs.size());
+  std::vector<Effective> effs(jobs.size());
+  std::vector<size_t> todo;
+  std::error_code ec;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const Job& job = jobs[i];
+    if (job.excluded) continue;
+    fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
+    if (dir.empty()) dir = fs::current_path(ec);
+    if (!settings.effective(dir, effs[i])) return {};  // run_job reports the error in order
+    todo.push_back(i);
+  }
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t k; (k = next++) < todo.size();) {
+      const size_t i = todo[k];
+      auto p = std::make_unique<Prelinted>();
+      try {
+        JobReader reader(jobs[i]);
+        p->result = lint_machine(p->sources, reader, effs[i].lint);
+      } catch (...) {
+        p->error = std::current_exception();
+      }
+      out[i] = std::move(p);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned n = 1; n < threads && n < todo.size(); ++n) pool.emplace_back(work);
+  work();
+  for (std::thread& th : pool) th.join();
+  return out;
+}
+
 bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
-             Totals& t) {
+             Totals& t, std::unique_ptr<Prelinted> pre = nullptr) {
   std::error_code ec;
   if (job.excluded) {
     // Excluded stdin: nothing to report, and --fix hands the text back unchanged (an editor must not lose it).
@@ -52,7 +98,14 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
     return it->second;
   };
 
-  MachineResult r = lint_machine(sm, reader, eff.lint);
+  MachineResult r;
+  if (pre) {
+    if (pre->error) std::rethrow_exception(pre->error);
+    r = std::move(pre->result);
+    shift_file_ids(r, sm.adopt(pre->sources));
+  } else {
+    r = lint_machine(sm, reader, eff.lint);
+  }
   if (job.report_all && co.plan.respect_gitignore) {
     // One `git check-ignore` for the whole card rather than one per file.
     std::vector<std::string> files;
@@ -199,8 +252,14 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
 
   SourceManager sm;
   Totals t;
-  for (const Job& j : jobs) {
-    if (!run_job(j, co, settings, gitignore, sm, t)) {
+  // Plain checks lint the machines in parallel; rewriting runs (--fix, --diff, --add-suppressions) stay serial.
+  std::vector<std::unique_ptr<Prelinted>> ahead;
+  const unsigned threads = co.jobs > 0 ? co.jobs : std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+  if (!co.fix && !co.diff && !co.add_suppressions && jobs.size() > 1 && threads > 1)
+    ahead = lint_ahead(jobs, settings, threads);
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const Job& j = jobs[i];
+    if (!run_job(j, co, settings, gitignore, sm, t, i < ahead.size() ? std::move(ahead[i]) : nullptr)) {
       if (settings.config_error()) error(settings.config_error()->str());
       return kExitError;
     }

@@ -184,6 +184,7 @@ struct CheckOptions {
   bool exit_zero = false, verbose = false;
   bool fix = false, unsafe_fixes = false, diff = false;
   std::optional<std::string> add_suppressions;  // the reason (may be empty)
+  unsigned jobs = 0;                             // machines linted at once; 0 = the CPU count, at most 8
   PlanOptions plan;
 };
 

@@ -99,6 +99,8 @@ int main(int argc, char** argv) {
   check->add_option("--stdin-filename", co.plan.stdin_filename, "The name of the file read from stdin (messages, config, card)");
   check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout");
   check->add_flag("--exit-zero", co.exit_zero, "Exit 0 even when findings reach --fail-on");
+  check->add_option("-j,--jobs", co.jobs, "Lint up to N machines at once (default: the CPU count, at most 8)")
+      ->check(CLI::Range(1u, 256u));
   check->add_flag("-v,--verbose", co.verbose, "Print the firmware target, its evidence and the config file (stderr)");
   check->add_flag("--fix", co.fix, "Apply safe fixes (rounds until stable, at most 10) and report what is left");
   check->add_flag("--unsafe-fixes", co.unsafe_fixes, "With --fix or --diff, apply unsafe fixes too");

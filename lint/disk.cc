@@ -125,6 +125,9 @@ std::string absolute_normal(const fs::path& p) {
 }
 
 const DirCache::Listing& DirCache::get(const std::string& dir) {
+  // Readers of machines linted in parallel share the cache. A listing never changes once made, and the map's
+  // nodes stay put, so the reference stays good after the lock is released.
+  std::lock_guard<std::mutex> lock(mutex_);
   auto [it, fresh] = listings_.try_emplace(dir);
   if (fresh) {
     Listing& l = it->second;

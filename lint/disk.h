@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,10 +48,11 @@ class DirCache {
     std::vector<DirEntry> entries;
     std::unordered_map<std::string, size_t> by_lower;  // lower-cased name -> the first entry of that name
   };
-  /// The listing of a folder (absolute, normal).
+  /// The listing of a folder (absolute, normal). Thread-safe.
   const Listing& get(const std::string& dir);
 
  private:
+  std::mutex mutex_;
   std::unordered_map<std::string, Listing> listings_;
 };
 

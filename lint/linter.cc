@@ -127,6 +127,19 @@ class NodeDispatch {
 
 }  // namespace
 
+void shift_file_ids(MachineResult& r, FileId base) {
+  auto shift = [base](Location& l) {
+    if (l.file != kNoFile) l.file += base;
+  };
+  for (Diagnostic& d : r.diagnostics) {
+    shift(d.loc);
+    for (Note& n : d.notes) shift(n.loc);
+    if (d.fix)
+      for (Edit& e : d.fix->edits) shift(e.loc);
+  }
+  for (Evidence& e : r.target.evidence) shift(e.loc);
+}
+
 MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options) {
   MachineResult res;
   res.machine = std::make_unique<Machine>(sources, reader);

@@ -48,6 +48,9 @@ struct MachineResult {
   std::vector<Diagnostic> diagnostics;  // sorted by file, position, code
 };
 
+/// Adds `base` to every FileId in a result (after SourceManager::adopt moved its files).
+void shift_file_ids(MachineResult& r, FileId base);
+
 /// Lints the machine that `reader` holds (SD paths: /sys/config.g, /macros/…).
 MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options);
 

@@ -87,6 +87,16 @@ uint32_t count_code_points(std::string_view s) {
   return count;
 }
 
+FileId SourceManager::adopt(SourceManager& other) {
+  const auto base = static_cast<FileId>(files_.size());
+  for (auto& f : other.files_) {
+    f->renumber(static_cast<FileId>(files_.size()));
+    files_.push_back(std::move(f));
+  }
+  other.files_.clear();
+  return base;
+}
+
 const SourceFile& SourceManager::add(std::string display, std::string sd_path, std::string bytes) {
   auto id = static_cast<FileId>(files_.size());
   files_.push_back(std::make_unique<SourceFile>(id, std::move(display), std::move(sd_path), std::move(bytes)));

@@ -45,6 +45,7 @@ class SourceFile {
   SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes);
 
   FileId id() const { return id_; }
+  void renumber(FileId id) { id_ = id; }  // SourceManager::adopt only
   const std::string& display_path() const { return display_; }
   const std::string& sd_path() const { return sd_path_; }
   std::string_view text() const { return bytes_; }
@@ -94,6 +95,9 @@ class SourceManager {
   const SourceFile& add(std::string display, std::string sd_path, std::string bytes);
   const SourceFile& get(FileId id) const { return *files_[id]; }
   size_t size() const { return files_.size(); }
+  /// Moves every file of `other` to the end of this manager (the SourceFile objects stay where they are) and
+  /// returns how much their ids grew. Lets several machines be linted apart, each with its own manager.
+  FileId adopt(SourceManager& other);
 
  private:
   std::vector<std::unique_ptr<SourceFile>> files_;

@@ -483,3 +483,28 @@ TEST_CASE("ci: the problem matcher in .github reads every concise line", "[cli][
   CHECK(sm[p["code"].get<int>()] == "RRF900");
   CHECK(sm[p["message"].get<int>()] == "unused suppression 'unknown-command' in 'disable': no such finding on this line");
 }
+
+TEST_CASE("cli: machines linted in parallel report exactly what a serial run reports", "[cli]") {
+  TempTree t;
+  // Several cards with findings in several files, notes across files, a lone file and a config with per-file
+  // ignores: the parallel run must give the same bytes, in the same order.
+  for (int i = 0; i < 6; ++i) {
+    const std::string card = "c" + std::to_string(i);
+    t.write(card + "/sys/config.g", "M9999\nM563 P0 D0 H1\nG10 P0 X1\nM98 P\"a.g\"\nT0\n");
+    t.write(card + "/sys/a.g", "M9998\nG10 P" + std::to_string(i) + " Z1\n");
+    t.write(card + "/sys/tpost0.g", "G1 X1 F600 G1 Y2\n");
+  }
+  t.write("lone.g", "M9997\n");
+  t.write(".rrflint.toml", "[per-file-ignores]\n\"c3/**\" = [\"RRF101\"]\n");
+  for (const std::string fmt : {"text", "json", "sarif"}) {
+    auto serial = run_rrflint(t.root(), "check . lone.g --format " + fmt + " -j 1");
+    auto parallel = run_rrflint(t.root(), "check . lone.g --format " + fmt + " -j 4");
+    INFO(fmt);
+    CHECK(serial.code == 1);
+    CHECK(parallel.code == serial.code);
+    CHECK(parallel.out == serial.out);
+    CHECK(parallel.err == serial.err);
+    CHECK(contains(serial.out, "M9998"));
+  }
+  CHECK(run_rrflint(t.root(), "check . -j 0").code == 2);  // a usage error
+}
