@@ -138,6 +138,18 @@ bool Machine::has_dir(std::string_view sd_dir) const {
   return false;
 }
 
+bool Machine::uses_code(char letter, int32_t number) const {
+  // Remembered with the number of units it covers: a file loaded later is scanned when next asked.
+  auto& [seen, used] = code_uses_[{letter, number}];
+  for (; seen < units_.size() && !used; ++seen)
+    for (const Command& c : units_[seen]->parsed.commands)
+      if (c.letter == letter && c.number == number && c.fraction < 0) {
+        used = true;
+        break;
+      }
+  return used;
+}
+
 bool Machine::has_file(std::string_view sd_path) const {
   const std::string key = to_lower(sd_path);
   if (listing_.count(key)) return true;

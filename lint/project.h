@@ -81,6 +81,8 @@ class Machine {
   bool has_file(std::string_view sd_path) const;
   /// Does the SD card hold any file below this folder? (A repository often keeps only sys/.)
   bool has_dir(std::string_view sd_dir) const;
+  /// Does any loaded file use this code (no fraction)? Answered once per code for the machine.
+  bool uses_code(char letter, int32_t number) const;
 
  private:
   SourceManager& sources_;
@@ -89,6 +91,7 @@ class Machine {
   std::map<std::string, int32_t> by_path_;  // lower-cased SD path -> unit index, or -1 when missing
   std::vector<LoadProblem> problems_;
   std::map<std::string, bool> listing_;  // lower-cased SD paths
+  mutable std::map<std::pair<char, int32_t>, std::pair<size_t, bool>> code_uses_;  // code -> (units seen, used)
 };
 
 std::string to_lower(std::string_view s);

@@ -67,11 +67,7 @@ void check(const FileContext& cx, Sink& out) {
   // The machine mode is global: a file that never sets it may run in the CNC mode another file selects.
   bool own_mode = false;
   for (const Command& c : pf.commands) own_mode = own_mode || sets_mode(c);
-  if (!own_mode) {
-    for (size_t u = 0; u < cx.machine.unit_count(); ++u)
-      for (const Command& c : cx.machine.unit(static_cast<uint32_t>(u)).parsed.commands)
-        if (c.letter == 'M' && c.number == 453 && c.fraction < 0) return;
-  }
+  if (!own_mode && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
   for (const Line& line : pf.lines) {
     if (line.kind == LineKind::Commands && !cnc && lex::contains(t, line.code, '(')) {
