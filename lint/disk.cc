@@ -153,9 +153,11 @@ fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
 std::optional<std::string> DiskReader::locate(std::string_view sd_path, std::string* spelled) const {
   std::string cur, out;
   std::string_view rest;
-  if (sd_path.size() >= 5 && to_lower(sd_path.substr(0, 5)) == "/sys/") {
+  // "/sys" itself and everything below it live in the sys folder, whatever that folder is called on disk.
+  const std::string head = to_lower(sd_path.substr(0, 5));
+  if (head == "/sys/" || head == "/sys") {
     cur = sys_;
-    rest = sd_path.substr(5);
+    rest = sd_path.substr(std::min<size_t>(sd_path.size(), 5));
     out = "/sys";
   } else {
     cur = root_;

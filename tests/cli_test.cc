@@ -508,3 +508,18 @@ TEST_CASE("cli: machines linted in parallel report exactly what a serial run rep
   }
   CHECK(run_rrflint(t.root(), "check . -j 0").code == 2);  // a usage error
 }
+
+TEST_CASE("cli: a macro in a sys folder under another name is linted with its card", "[cli]") {
+  TempTree t;
+  t.write("printer/config.g", "M98 P\"homeall.g\"\n");
+  t.write("printer/homeall.g", "M9998\n");
+  t.write("printer/park.g", "M9997\n");
+  // Named on its own, the macro is linted as part of the card (config.g's folder plays /sys) and reported.
+  auto o = run_rrflint(t.root() / "printer", "check park.g --format concise");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "park.g:1:1: warning: 'M9997'"));
+  CHECK_FALSE(contains(o.out, "M9998"));  // only the file asked for
+  o = run_rrflint(t.root(), "check printer --format concise");
+  CHECK(contains(o.out, "printer/homeall.g:1:1"));
+  CHECK(contains(o.out, "printer/park.g:1:1"));
+}

@@ -446,3 +446,29 @@ TEST_CASE("parser: parameters lexed on demand are those the parse counted", "[pa
   }
   CHECK(commands > 1000);
 }
+
+TEST_CASE("parser: records that overflow their compact fields decode exactly", "[parser]") {
+  // A 20-byte record saturates a few counters; the exact values live in side tables. Exercise each one.
+  std::string many_commands;
+  for (int i = 0; i < 70000; ++i) many_commands += "G4 ";
+  std::string many_params = "M92";
+  for (int i = 0; i < 300; ++i) many_params += " X" + std::to_string(i);
+  const std::string long_word = "T{" + std::string(300, '1') + "}";
+  const std::string deep = std::string(70000, ' ') + "G1 X1";
+  Parsed p = parse_text(many_commands + "\n" + many_params + "\n" + long_word + " P0\n" + deep + "\n");
+  REQUIRE(p.pf.lines.size() == 4);
+  CHECK(p.pf.lines[0].command_count == 70000);
+  CHECK(p.pf.commands.size() == 70000 + 3);
+  const Command m92 = p.pf.commands[70000];
+  CHECK(m92.is('M', 92));
+  CHECK(m92.param_count == 300);
+  CHECK(p.pf.find(m92, 'X')->value == Span{m92.word.end + 2, m92.word.end + 3});
+  const Command t = p.pf.commands[70001];
+  CHECK(t.number_expr);
+  CHECK(t.word.size() == long_word.size());
+  CHECK(t.param_count == 2);
+  CHECK(p.pf.find(t, 'T')->kind == ValueKind::Expression);
+  CHECK(p.pf.lines[3].indent == 65535);  // saturated: only the block structure reads it
+  CHECK(p.pf.lines[3].code.size() == 5);
+  CHECK(p.pf.errors.empty());
+}
