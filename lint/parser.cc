@@ -276,6 +276,7 @@ void LineTable::add(const Line& l) {
   }
   r.indent = static_cast<uint16_t>(l.indent < 65535 ? l.indent : 65535);
   r.stored_length = static_cast<uint16_t>(l.stored_length < 65535 ? l.stored_length : 65535);
+  if (l.indent >= 65535 || l.stored_length >= 65535) long_lines_[i] = {l.indent, l.stored_length};
   r.command_count = static_cast<uint16_t>(l.command_count < 65535 ? l.command_count : 65535);
   if (l.command_count >= 65535) big_counts_[i] = l.command_count;
   r.kind_meta = static_cast<uint8_t>(static_cast<unsigned>(l.kind) | (static_cast<unsigned>(l.meta) << 3) |
@@ -288,6 +289,8 @@ void LineTable::add(const Line& l) {
 }
 
 uint32_t LineTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }
+uint32_t LineTable::long_indent(size_t i) const { return long_lines_.at(static_cast<uint32_t>(i)).first; }
+uint32_t LineTable::long_length(size_t i) const { return long_lines_.at(static_cast<uint32_t>(i)).second; }
 
 // ---- The line parser ----
 
@@ -646,15 +649,17 @@ void compute_blocks(ParsedFile& pf) {
   std::vector<Open> stack{{0, MetaKind::None, MetaKind::None}};
   MetaKind prev_meta = MetaKind::None;
   bool saw_tabs = false, saw_spaces = false;
-  for (detail::LineRec& line : pf.lines.recs_) {
+  for (size_t li = 0; li < pf.lines.recs_.size(); ++li) {
+    detail::LineRec& line = pf.lines.recs_[li];
+    const uint32_t indent = line.indent < 65535 ? line.indent : pf.lines.long_indent(li);
     const auto kind = static_cast<LineKind>(line.kind_meta & 7);
     const auto meta = static_cast<MetaKind>((line.kind_meta >> 3) & 15);
     if (kind != LineKind::Commands && kind != LineKind::Meta && kind != LineKind::Bad) continue;
-    while (stack.size() > 1 && line.indent < stack.back().indent) stack.pop_back();
-    if (line.indent > stack.back().indent) {
+    while (stack.size() > 1 && indent < stack.back().indent) stack.pop_back();
+    if (indent > stack.back().indent) {
       const bool opener = prev_meta == MetaKind::If || prev_meta == MetaKind::Elif || prev_meta == MetaKind::Else ||
                           prev_meta == MetaKind::While;
-      stack.push_back({line.indent, opener ? prev_meta : MetaKind::None, MetaKind::None});
+      stack.push_back({indent, opener ? prev_meta : MetaKind::None, MetaKind::None});
       if (line.flags & detail::kIndentTabs) saw_tabs = true;
       if (line.flags & detail::kIndentSpaces) saw_spaces = true;
     }

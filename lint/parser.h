@@ -102,7 +102,7 @@ struct Line {
   Span code;        // the text RRF executes: no indentation, line number, checksum or comment; trimmed
   Span comment;     // the comment text including ';' (empty when none)
   uint32_t indent = 0;      // RRF indent units: a blank counts 1, a tab advances to the next multiple of 4
-  uint32_t stored_length = 0;  // characters RRF stores for the length limit (saturates at 65535)
+  uint32_t stored_length = 0;  // characters RRF stores for the length limit
   uint32_t first_command = 0;
   uint32_t command_count = 0;
   LineKind kind = LineKind::Blank;
@@ -154,8 +154,8 @@ enum CommandBits : uint8_t {
 struct LineRec {
   uint32_t code_begin = 0, code_end = 0;
   uint32_t first = 0;        // Commands/Bad: first command; Meta: index into the meta table
-  uint16_t indent = 0;       // saturated
-  uint16_t stored_length = 0;  // saturated
+  uint16_t indent = 0;         // saturated: the exact value is then in LineTable::long_lines_
+  uint16_t stored_length = 0;  // saturated: likewise
   uint16_t command_count = 0;  // saturated: the exact count is then in LineTable::big_counts_
   uint8_t kind_meta = 0;     // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
   uint8_t flags = 0;         // LineFlag bits
@@ -242,6 +242,8 @@ class LineTable {
   friend void compute_blocks(ParsedFile&);
   void add(const Line& l);
   uint32_t big_count(size_t i) const;
+  uint32_t long_indent(size_t i) const;
+  uint32_t long_length(size_t i) const;
   struct MetaRec {
     Span arg, name;
   };
@@ -250,6 +252,7 @@ class LineTable {
   std::vector<MetaRec> metas_;
   std::vector<Span> spans_;  // every logical line's span, kept only when the file has NUL bytes
   std::map<uint32_t, uint32_t> big_counts_;  // line -> command count, for 65535 or more
+  std::map<uint32_t, std::pair<uint32_t, uint32_t>> long_lines_;  // line -> (indent, stored length), 65535 or more
 };
 
 /// The parameters of one command, lexed as they are iterated.
@@ -333,8 +336,8 @@ RRFLINT_ALWAYS_INLINE inline Line LineTable::operator[](size_t i) const {
   l.code = Span{r.code_begin, r.code_end};
   l.kind = static_cast<LineKind>(r.kind_meta & 7);
   l.meta = static_cast<MetaKind>((r.kind_meta >> 3) & 15);
-  l.indent = r.indent;
-  l.stored_length = r.stored_length;
+  l.indent = r.indent < 65535 ? r.indent : long_indent(i);
+  l.stored_length = r.stored_length < 65535 ? r.stored_length : long_length(i);
   l.command_count = r.command_count < 65535 ? r.command_count : big_count(i);
   if (l.kind == LineKind::Meta) {
     l.meta_arg = metas_[r.first].arg;

@@ -468,7 +468,13 @@ TEST_CASE("parser: records that overflow their compact fields decode exactly", "
   CHECK(t.word.size() == long_word.size());
   CHECK(t.param_count == 2);
   CHECK(p.pf.find(t, 'T')->kind == ValueKind::Expression);
-  CHECK(p.pf.lines[3].indent == 65535);  // saturated: only the block structure reads it
+  CHECK(p.pf.lines[3].indent == 70000);
   CHECK(p.pf.lines[3].code.size() == 5);
+  CHECK(p.pf.lines[0].stored_length == many_commands.size());
+  // A block opened under a deep indentation still ends where the indentation drops back by one (saturated
+  // indents would both read 65535 and keep the second line in the block).
+  Parsed blocks = parse_text("if true\n" + std::string(70000, ' ') + "G1 X1\n" + std::string(69999, ' ') + "G1 X2\n");
+  CHECK(blocks.pf.lines[1].conditional);
+  CHECK_FALSE(blocks.pf.lines[2].conditional);
   CHECK(p.pf.errors.empty());
 }
