@@ -3,8 +3,8 @@
 // One pass per file, no allocation per token. What the pass keeps is small: a 20-byte record per line and per
 // command, decoded into the `Line` and `Command` values below when asked for. Parameters are not stored at all:
 // the pass lexes them once (to report errors and count them) and `ParsedFile::params` / `find` lex a command's
-// parameters again on demand, with the same code. A 100 MB file therefore costs about 1.5x its size in parse
-// records (bench/RESULTS.md, P4). Parse errors are collected and parsing resumes at the next line, the way RRF
+// parameters again on demand, with the same code. The generated 100 MB benchmark file therefore costs about 1.2x its
+// size in line and command records (bench/RESULTS.md, P4). Parse errors are collected and parsing resumes at the next line, the way RRF
 // itself reports an error and carries on with the next line.
 #pragma once
 
@@ -220,7 +220,7 @@ class CommandTable {
   uint32_t long_word_end(size_t i) const;
   uint32_t big_count(size_t i) const;
   std::vector<detail::CommandRec> recs_;
-  std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words over 255 bytes
+  std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words of 255 bytes or more
   std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
 };
 
