@@ -26,9 +26,18 @@ struct Totals {
   std::optional<std::string> stdout_text;  // fixed or annotated stdin
 };
 
-// One job: lint, then the requested rewrite, then collect what is to be reported.
+// The settings of a job's machine: its sys folder (or a lone file's folder) finds the governing config.
+// False on a config or option error.
+bool job_settings(const Job& job, Settings& settings, Effective& eff) {
+  std::error_code ec;
+  fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
+  if (dir.empty()) dir = fs::current_path(ec);
+  return settings.effective(dir, eff);
+}
+
 // A machine linted ahead, on a worker thread, with its own SourceManager (run_job adopts its files).
 struct Prelinted {
+  Effective eff;
   SourceManager sources;
   MachineResult result;
   std::exception_ptr error;
@@ -38,29 +47,23 @@ struct Prelinted {
 // own reader and sources, and the rules keep no state. Settings are resolved first, on this thread.
 std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs, Settings& settings, unsigned threads) {
   std::vector<std::unique_ptr<Prelinted>> out(jobs.size());
-  std::vector<Effective> effs(jobs.size());
   std::vector<size_t> todo;
-  std::error_code ec;
   for (size_t i = 0; i < jobs.size(); ++i) {
-    const Job& job = jobs[i];
-    if (job.excluded) continue;
-    fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
-    if (dir.empty()) dir = fs::current_path(ec);
-    if (!settings.effective(dir, effs[i])) return {};  // run_job reports the error in order
+    if (jobs[i].excluded) continue;
+    out[i] = std::make_unique<Prelinted>();
+    if (!job_settings(jobs[i], settings, out[i]->eff)) return {};  // run_job reports the error in order
     todo.push_back(i);
   }
   std::atomic<size_t> next{0};
   auto work = [&] {
     for (size_t k; (k = next++) < todo.size();) {
-      const size_t i = todo[k];
-      auto p = std::make_unique<Prelinted>();
+      Prelinted& p = *out[todo[k]];
       try {
-        JobReader reader(jobs[i]);
-        p->result = lint_machine(p->sources, reader, effs[i].lint);
+        JobReader reader(jobs[todo[k]]);
+        p.result = lint_machine(p.sources, reader, p.eff.lint);
       } catch (...) {
-        p->error = std::current_exception();
+        p.error = std::current_exception();
       }
-      out[i] = std::move(p);
     }
   };
   std::vector<std::thread> pool;
@@ -70,18 +73,17 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
   return out;
 }
 
+// One job: lint (unless linted ahead), then the requested rewrite, then collect what is to be reported.
 bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
              Totals& t, std::unique_ptr<Prelinted> pre = nullptr) {
-  std::error_code ec;
   if (job.excluded) {
     // Excluded stdin: nothing to report, and --fix hands the text back unchanged (an editor must not lose it).
     if ((co.fix || co.add_suppressions) && job.stdin_bytes) t.stdout_text = *job.stdin_bytes;
     return true;
   }
-  fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
-  if (dir.empty()) dir = fs::current_path(ec);
   Effective eff;
-  if (!settings.effective(dir, eff)) return false;
+  if (pre) eff = std::move(pre->eff);
+  else if (!job_settings(job, settings, eff)) return false;
   JobReader reader(job);
 
   // Decided once per file: a card's files have many findings each.

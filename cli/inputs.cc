@@ -396,15 +396,20 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     if (p == "-") {
       std::string bytes((std::istreambuf_iterator<char>(std::cin)), {});
       fs::path name = po.stdin_filename.empty() ? fs::path("stdin.g") : fs::path(po.stdin_filename);
+      // Standard input linted on its own, or (excluded) only echoed back by --fix.
+      auto lone_stdin = [&](bool excluded) {
+        Job j;
+        j.standalone = name;
+        j.stdin_bytes = bytes;
+        j.title = name.string();
+        j.excluded = excluded;
+        j.explicit_path = !excluded;
+        jobs.push_back(std::move(j));
+      };
       if (!po.stdin_filename.empty()) {
         const std::string abs = absolute_normal(name);
         if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) {
-          Job j;
-          j.standalone = name;
-          j.stdin_bytes = bytes;
-          j.title = name.string();
-          j.excluded = true;
-          jobs.push_back(j);
+          lone_stdin(true);
           continue;
         }
         if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
@@ -416,12 +421,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
           continue;
         }
       }
-      Job j;
-      j.standalone = name;
-      j.stdin_bytes = bytes;
-      j.title = name.string();
-      j.explicit_path = true;
-      jobs.push_back(j);
+      lone_stdin(false);
       continue;
     }
     const fs::path path(p);

@@ -69,19 +69,14 @@ size_t apply_edits(std::string& text, std::vector<Edit> edits) {
   });
   std::string out;
   out.reserve(text.size() + 64);
-  uint32_t pos = 0;
+  uint32_t pos = 0;  // the end of the last edit applied
   size_t applied = 0;
-  bool any = false;
-  uint32_t last_end = 0;
   for (const Edit& e : edits) {
     if (e.loc.span.end > text.size() || e.loc.span.begin > e.loc.span.end) continue;
-    if (any && e.loc.span.begin < last_end) continue;  // overlaps: left for the next round
-    if (any && e.loc.span.begin == last_end && e.loc.span.empty() && last_end == pos && false) continue;
+    if (e.loc.span.begin < pos) continue;  // overlaps: left for the next round
     out.append(text, pos, e.loc.span.begin - pos);
     out += e.replacement;
     pos = e.loc.span.end;
-    last_end = e.loc.span.end;
-    any = true;
     ++applied;
   }
   out.append(text, pos, std::string::npos);

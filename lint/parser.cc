@@ -37,11 +37,8 @@ struct ByteClasses {
 };
 constexpr ByteClasses kBytes;
 
-// Commands whose one string argument needs no letter and runs to the end of the line (M117 text, M23 file).
-bool unlettered_string(const Command& c) {
-  return c.letter == 'M' && c.fraction < 0 &&
-         (c.number == 117 || c.number == 23 || c.number == 28 || c.number == 30 || c.number == 32 || c.number == 36);
-}
+// A command whose one string argument needs no letter (M117 text); a fraction makes it another command.
+bool unlettered_string(const Command& c) { return c.fraction < 0 && takes_unlettered_string(c.letter, c.number); }
 
 }  // namespace
 
@@ -688,15 +685,19 @@ std::string_view meta_keyword(MetaKind k) {
   return "";
 }
 
-bool takes_rest_of_line(char letter, int32_t number) {
+bool takes_unlettered_string(char letter, int32_t number) {
   if (letter != 'M') return false;
   switch (number) {
     case 23: case 28: case 30: case 32: case 36: case 117:  // unprecedented strings
-    case 98: case 550: case 551:                             // P may be unquoted
       return true;
     default:
       return false;
   }
+}
+
+bool takes_rest_of_line(char letter, int32_t number) {
+  // P may be unquoted for M98, M550 and M551.
+  return takes_unlettered_string(letter, number) || (letter == 'M' && (number == 98 || number == 550 || number == 551));
 }
 
 ParamRange::iterator::iterator(std::string_view text, const Command& c) : t_(text), c_(c), done_(false) {

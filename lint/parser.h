@@ -371,5 +371,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts = {});
 
 /// True for codes whose single string argument may be unquoted and runs to the end of the line.
 bool takes_rest_of_line(char letter, int32_t number);
+/// True for the codes among those whose string needs no letter either (M117 text, M23 file).
+bool takes_unlettered_string(char letter, int32_t number);
 
 }  // namespace rrflint

@@ -1,4 +1,6 @@
 // RRF202 extruder-before-creation: extruder values or extruder numbers before `M584 E…` creates the extruders.
+#include <algorithm>
+
 #include "g10_common.h"
 
 namespace rrflint {
@@ -95,18 +97,19 @@ void note_tool_uses(const NodeContext& cx, Report& r, int n) {
   }
 }
 
+// The first extruder number at or above `extruders` (one that does not exist), or -1.
+int64_t first_beyond(const std::vector<int64_t>& numbers, int extruders) {
+  auto it = std::find_if(numbers.begin(), numbers.end(), [&](int64_t d) { return d >= extruders; });
+  return it == numbers.end() ? -1 : *it;
+}
+
 void check_m563(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   auto D = get_int_list(pf, c, 'D');
   if (!D.known() || !pf.find(c, 'P')) return;
-  int64_t bad = -1;
-  for (int64_t d : D.value)
-    if (d >= s.extruders) {
-      bad = d;
-      break;
-    }
+  const int64_t bad = first_beyond(D.value, s.extruders);
   if (bad < 0) return;
   auto P = get_int(pf, c, 'P');
   const bool n_known = P.known() && P.value >= 0;
@@ -148,12 +151,7 @@ void check_d(const NodeContext& cx, Sink& out) {
   auto D = get_int_list(pf, c, 'D');
   if (!D.known() || D.value.empty()) return;
   if (c.number != 572) D.value.resize(1);  // M591/M221 read one number
-  int64_t bad = -1;
-  for (int64_t d : D.value)
-    if (d >= s.extruders) {
-      bad = d;
-      break;
-    }
+  const int64_t bad = first_beyond(D.value, s.extruders);
   if (bad < 0) return;
   const std::string answer =
       c.number == 572 ? fmt::format("Invalid extruder number '{}'", bad) : std::string("parameter 'D' too high");

@@ -20,9 +20,7 @@ inline std::string_view word(const ParsedFile& pf, const Command& c) { return pf
 /// such text as it is: quotes, apostrophes and parentheses in it mean nothing.
 inline bool is_raw_text(const Command& c, const Param& p) {
   if (p.kind != ValueKind::Text || !takes_rest_of_line(c.letter, c.number)) return false;
-  const bool unlettered = c.number == 23 || c.number == 28 || c.number == 30 || c.number == 32 || c.number == 36 ||
-                          c.number == 117;
-  return unlettered ? p.letter == 0 : p.letter == 'P';
+  return takes_unlettered_string(c.letter, c.number) ? p.letter == 0 : p.letter == 'P';
 }
 
 /// Does span `s` of `t` hold the byte `c`?

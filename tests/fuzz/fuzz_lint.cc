@@ -14,6 +14,7 @@
 
 #include "lint/linter.h"
 #include "lint/render/render.h"
+#include "../param_check.h"
 
 using namespace rrflint;
 
@@ -50,17 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // Parameters are lexed twice (while parsing, and again on demand): both must see the same parameters.
   for (uint32_t u = 0; u < r.machine->unit_count(); ++u) {
     const ParsedFile& pf = r.machine->unit(u).parsed;
-    for (const Command& c : pf.commands) {
-      uint32_t n = 0;
-      bool exponent = false, colon = false;
-      for (const Param& p : pf.params(c)) {
-        ++n;
-        exponent = exponent || p.exponent_letter;
-        colon = colon || p.blank_before_colon;
-        if (p.span.begin < c.span.begin || p.span.end > c.span.end) __builtin_trap();
-      }
-      if (n != c.param_count || exponent != c.any_exponent || colon != c.any_blank_before_colon) __builtin_trap();
-    }
+    for (const Command& c : pf.commands)
+      if (!test::param_mismatch(pf, c).empty()) __builtin_trap();
     for (const Line& l : pf.lines)
       if (l.code.end > l.span.end || l.comment.end > l.span.end || l.span.end > pf.source->size()) __builtin_trap();
   }
