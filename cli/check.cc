@@ -28,11 +28,18 @@ struct Totals {
 
 // The settings of a job's machine: its sys folder (or a lone file's folder) finds the governing config.
 // False on a config or option error.
-bool job_settings(const Job& job, Settings& settings, Effective& eff) {
+bool job_settings(const Job& job, Settings& settings, unsigned threads, Effective& eff) {
   std::error_code ec;
   fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
   if (dir.empty()) dir = fs::current_path(ec);
-  return settings.effective(dir, eff);
+  if (!settings.effective(dir, eff)) return false;
+  eff.lint.threads = threads;
+  return true;
+}
+
+// The threads of one run: --jobs, or the CPU count (at most 8).
+unsigned co_threads(const CheckOptions& co) {
+  return co.jobs > 0 ? co.jobs : std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
 }
 
 // A machine linted ahead, on a worker thread, with its own SourceManager (run_job adopts its files).
@@ -51,7 +58,7 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
   for (size_t i = 0; i < jobs.size(); ++i) {
     if (jobs[i].excluded) continue;
     out[i] = std::make_unique<Prelinted>();
-    if (!job_settings(jobs[i], settings, out[i]->eff)) return {};  // run_job reports the error in order
+    if (!job_settings(jobs[i], settings, threads, out[i]->eff)) return {};  // run_job reports the error in order
     todo.push_back(i);
   }
   std::atomic<size_t> next{0};
@@ -83,7 +90,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
   }
   Effective eff;
   if (pre) eff = std::move(pre->eff);
-  else if (!job_settings(job, settings, eff)) return false;
+  else if (!job_settings(job, settings, co_threads(co), eff)) return false;
   JobReader reader(job);
 
   // Decided once per file: a card's files have many findings each.
@@ -256,7 +263,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   Totals t;
   // Plain checks lint the machines in parallel; rewriting runs (--fix, --diff, --add-suppressions) stay serial.
   std::vector<std::unique_ptr<Prelinted>> ahead;
-  const unsigned threads = co.jobs > 0 ? co.jobs : std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+  const unsigned threads = co_threads(co);
   if (!co.fix && !co.diff && !co.add_suppressions && jobs.size() > 1 && threads > 1)
     ahead = lint_ahead(jobs, settings, threads);
   for (size_t i = 0; i < jobs.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <set>
 #include <tuple>
 
+#include "parallel.h"
 #include "suppress.h"
 
 namespace rrflint {
@@ -139,6 +140,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   MachineResult res;
   res.machine = std::make_unique<Machine>(sources, reader);
   Machine& m = *res.machine;
+  m.set_threads(options.threads, options.part_bytes);
   const std::vector<const Rule*> rules = enabled_rules(options);
 
   // 1. Load and parse every file of the machine.
@@ -161,37 +163,57 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   go.include_entries = options.include_entries;
   res.graph = build_graph(m, go);
 
+  // 4. Per-file rules on every file loaded (including those the graph reached), and 5. the forward pass of the
+  // model with the node rules. A large machine runs the file rules as tasks on other threads while this one runs
+  // the forward pass; each task reports to its own sink and the sinks are merged in the serial order.
   Sink sink;
-  // 4. Per-file rules, on every file loaded (including those the graph reached).
-  for (uint32_t i = 0; i < m.unit_count(); ++i) {
-    FileContext fc{m, m.unit(i), res.target, options};
-    for (const Rule* r : rules)
-      if (r->check_file) r->check_file(fc, sink);
-  }
-
-  // 5. The forward pass: boot, then every entry from the end-of-boot state.
   ModelBuilder mb(m, res.graph, res.target.version, res.target.board);
   const NodeDispatch dispatch(rules, options.dispatch_every_node);
   MachineState boot_end = mb.initial_state();
   bool have_boot = false;
-  for (const Segment& seg : res.graph.segments) {
-    MachineState s = seg.boot ? mb.initial_state() : boot_end;
-    if (!seg.boot && !have_boot) s.unknown_baseline = true;
-    for (NodeId id = seg.begin; id < seg.end; ++id) {
-      mb.decide(s, id);
-      const auto& node_rules = dispatch.rules_for(res.graph.nodes[id], m);
-      if (!node_rules.empty()) {
-        if (const int runs = mb.runs(id); runs > 0) {
-          NodeContext nc{m, res.graph, res.target, options, s, id, runs};
-          for (const Rule* r : node_rules) r->check_node(nc, sink);
+  auto forward_pass = [&](Sink& node_sink) {
+    for (const Segment& seg : res.graph.segments) {
+      MachineState s = seg.boot ? mb.initial_state() : boot_end;
+      if (!seg.boot && !have_boot) s.unknown_baseline = true;
+      for (NodeId id = seg.begin; id < seg.end; ++id) {
+        mb.decide(s, id);
+        const auto& node_rules = dispatch.rules_for(res.graph.nodes[id], m);
+        if (!node_rules.empty()) {
+          if (const int runs = mb.runs(id); runs > 0) {
+            NodeContext nc{m, res.graph, res.target, options, s, id, runs};
+            for (const Rule* r : node_rules) r->check_node(nc, node_sink);
+          }
         }
+        mb.step(s, id);
       }
-      mb.step(s, id);
+      if (seg.boot) {
+        boot_end = s;
+        have_boot = true;
+      }
     }
-    if (seg.boot) {
-      boot_end = s;
-      have_boot = true;
-    }
+  };
+  std::vector<std::pair<uint32_t, const Rule*>> file_tasks;
+  size_t bytes = 0;
+  for (uint32_t i = 0; i < m.unit_count(); ++i) {
+    bytes += m.unit(i).source->size();
+    for (const Rule* r : rules)
+      if (r->check_file) file_tasks.emplace_back(i, r);
+  }
+  auto file_task = [&](size_t k, Sink& out) {
+    FileContext fc{m, m.unit(file_tasks[k].first), res.target, options};
+    file_tasks[k].second->check_file(fc, out);
+  };
+  if (options.threads > 1 && bytes >= 2 * options.part_bytes) {
+    std::vector<Sink> sinks(file_tasks.size());
+    Sink node_sink;
+    run_tasks(file_tasks.size(), options.threads, [&] { forward_pass(node_sink); },
+              [&](size_t k) { file_task(k, sinks[k]); });
+    for (Sink& part : sinks)
+      for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
+    for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
+  } else {
+    for (size_t k = 0; k < file_tasks.size(); ++k) file_task(k, sink);
+    forward_pass(sink);
   }
   res.end_of_boot = boot_end;
   res.has_boot = have_boot;

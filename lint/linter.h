@@ -28,6 +28,11 @@ struct LintOptions {
   bool tool_changer = false;                 // machine.tool-changer: evidence for RRF305
   bool include_entries = true;               // lint every other macro as its own entry
   std::string sys_dir = "/sys";
+  /// Threads one machine may use, and the work worth a thread: a file is parsed in parts of at least
+  /// `part_bytes` each, and a machine with twice that much source runs its file rules beside the forward pass.
+  /// The findings are the same for any count.
+  unsigned threads = 1;
+  size_t part_bytes = size_t{2} << 20;
   bool inline_suppressions = true;  // honour `; rrflint: disable=…` comments (--no-inline-suppressions: false)
   /// Per-file ignores (config file): is rule `code` switched off for this file? Null: never.
   std::function<bool(const SourceFile&, std::string_view code)> ignored_in_file;

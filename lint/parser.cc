@@ -1,9 +1,12 @@
 #include "parser.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 
 #include <fmt/format.h>
+
+#include "parallel.h"
 
 namespace rrflint {
 namespace {
@@ -257,12 +260,30 @@ void CommandTable::add(const Command& c) {
   recs_.push_back(r);
 }
 
+const detail::CommandRec& CommandTable::tail_rec(size_t i) const {
+  for (auto t = tails_.rbegin(); t != tails_.rend(); ++t)
+    if (i >= t->begin) return t->recs[i - t->begin];
+  return recs_[i];  // not reached: i < size()
+}
+
+void CommandTable::append(CommandTable&& part) {
+  const auto base = static_cast<uint32_t>(size());
+  for (const auto& [k, v] : part.long_words_) long_words_[k + base] = v;
+  for (const auto& [k, v] : part.big_counts_) big_counts_[k + base] = v;
+  tail_size_ += part.recs_.size();
+  tails_.push_back(Tail{base, std::move(part.recs_)});
+  part = CommandTable{};
+}
+
 uint32_t CommandTable::long_word_end(size_t i) const { return long_words_.at(static_cast<uint32_t>(i)); }
 uint32_t CommandTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }
 
 void LineTable::add(const Line& l) {
-  detail::LineRec r;
-  const auto i = static_cast<uint32_t>(recs_.size());
+  recs_.emplace_back();
+  put(recs_.back(), static_cast<uint32_t>(recs_.size() - 1), l);
+}
+
+void LineTable::put(detail::LineRec& r, uint32_t i, const Line& l) {
   r.code_begin = l.code.begin;
   r.code_end = l.code.end;
   if (l.kind == LineKind::Meta) {
@@ -282,7 +303,6 @@ void LineTable::add(const Line& l) {
                                  (l.line_number ? detail::kLineNumber : 0) | (l.checksum ? detail::kChecksum : 0) |
                                  (l.conditional ? detail::kConditional : 0) | (l.in_loop ? detail::kInLoop : 0) |
                                  (l.after_nul ? detail::kAfterNul : 0));
-  recs_.push_back(r);
 }
 
 uint32_t LineTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }
@@ -293,22 +313,40 @@ uint32_t LineTable::long_length(size_t i) const { return long_lines_.at(static_c
 
 class LineParser {
  public:
-  LineParser(ParsedFile& out, const ParseOptions& opts) : out_(out), lex_{out.source->text(), opts.cnc_mode, &out} {}
+  /// Lines go to `out.lines`, or, when `in_place` is given, into `in_place[first_line…]` (a part of a file parsed
+  /// in parts: `out` then takes the part's commands, meta-commands and errors, with commands indexed from 0).
+  LineParser(ParsedFile& out, bool cnc, detail::LineRec* in_place = nullptr, uint32_t first_line = 0)
+      : out_(out), lex_{out.source->text(), cnc, &out}, in_place_(in_place), next_line_(first_line) {}
+  /// Parses the editor lines [from, to) of the file.
+  void parse_lines(uint32_t from, uint32_t to, bool any_nul, bool any_del);
+  /// Parses a file without NUL bytes in `parts` parts, one per thread.
+  static void parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsigned parts, bool any_del);
 
   void parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool may_have_del);
 
  private:
   void error(uint32_t b, uint32_t e, std::string msg) { lex_.error(b, e, std::move(msg)); }
+  static void join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, uint32_t end);
   void parse_meta(Line& line, MetaKind kind, uint32_t after_kw, uint32_t e);
   void parse_commands(Line& line, uint32_t b, uint32_t e);
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
   void add_line(const Line& line, bool cut_by_del) {
-    out_.lines.add(line);
-    if (cut_by_del) out_.lines.recs_.back().flags |= detail::kCutByDel;
+    detail::LineRec* r;
+    if (in_place_) {
+      r = &in_place_[next_line_];
+      out_.lines.put(*r, next_line_, line);
+    } else {
+      out_.lines.add(line);
+      r = &out_.lines.recs_.back();
+    }
+    if (cut_by_del) r->flags |= detail::kCutByDel;
+    ++next_line_;
   }
 
   ParsedFile& out_;
   Lexer lex_;
+  detail::LineRec* in_place_;
+  uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
 };
@@ -542,7 +580,7 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
   const std::string_view t = lex_.t;
   line.kind = LineKind::Commands;
   line.first_command = static_cast<uint32_t>(out_.commands.size());
-  const auto line_index = static_cast<uint32_t>(out_.lines.size());
+  const uint32_t line_index = next_line_;
   uint32_t p = b;
   bool first = true;
   while (true) {
@@ -733,6 +771,86 @@ ParamRef ParsedFile::find(const Command& c, char letter) const {
   return ParamRef();
 }
 
+void LineParser::parse_lines(uint32_t from, uint32_t to, bool any_nul, bool any_del) {
+  const SourceFile& file = *out_.source;
+  const std::string_view t = file.text();
+  for (uint32_t i = from; i < to; ++i) {
+    const Span ls = file.line_span(i);
+    uint32_t b = ls.begin;
+    bool after_nul = false;
+    for (;;) {
+      const void* nul = any_nul ? std::memchr(t.data() + b, '\0', ls.end - b) : nullptr;
+      const uint32_t e = nul ? static_cast<uint32_t>(static_cast<const char*>(nul) - t.data()) : ls.end;
+      next_cnc_ = lex_.cnc;
+      parse_logical_line(b, e, after_nul, any_del);
+      lex_.cnc = next_cnc_;
+      if (any_nul) out_.lines.spans_.push_back(Span{b, e});
+      if (!nul) break;
+      out_.errors.push_back({Span{e, e + 1}, "NUL byte: RRF ends the line here and reads the rest as a new line"});
+      b = e + 1;
+      after_nul = true;
+    }
+  }
+}
+
+// Appends `part` (lines [first, end) of the file, already in place in pf.lines) to `pf`: its line records are
+// re-pointed at the joined command and meta-command tables.
+void LineParser::join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, uint32_t end) {
+  const auto cmd_base = static_cast<uint32_t>(pf.commands.size());
+  const auto meta_base = static_cast<uint32_t>(pf.lines.metas_.size());
+  for (uint32_t i = first; i < end; ++i) {
+    detail::LineRec& r = pf.lines.recs_[i];
+    const auto kind = static_cast<LineKind>(r.kind_meta & 7);
+    if (kind == LineKind::Commands || kind == LineKind::Bad) r.first += cmd_base;
+    else if (kind == LineKind::Meta) r.first += meta_base;
+  }
+  pf.lines.metas_.insert(pf.lines.metas_.end(), part.lines.metas_.begin(), part.lines.metas_.end());
+  pf.lines.big_counts_.merge(part.lines.big_counts_);  // keyed by line: already the file's indices
+  pf.lines.long_lines_.merge(part.lines.long_lines_);
+  pf.commands.append(std::move(part.commands));
+  pf.errors.insert(pf.errors.end(), std::make_move_iterator(part.errors.begin()), std::make_move_iterator(part.errors.end()));
+  pf.semicolon_cuts.insert(pf.semicolon_cuts.end(), part.semicolon_cuts.begin(), part.semicolon_cuts.end());
+}
+
+// A file without NUL bytes has one logical line per editor line, so each part writes its line records in place.
+// A part's commands are counted from 0 until it is joined. A part starts in FFF mode (or the caller's mode, for
+// the first); if the part before it ends in the other mode, it is parsed again once that is known.
+void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsigned parts, bool any_del) {
+  const SourceFile& file = *pf.source;
+  std::vector<uint32_t> first(parts + 1, 0);
+  first[parts] = file.line_count();
+  for (unsigned j = 1; j < parts; ++j)
+    first[j] = std::max(first[j - 1], file.line_of(static_cast<uint32_t>(uint64_t{file.size()} * j / parts)));
+  pf.lines.recs_.resize(file.line_count());
+  struct Part {
+    ParsedFile out;
+    bool cnc_in = false, cnc_out = false;
+  };
+  std::vector<Part> ps(parts);
+  ps[0].cnc_in = opts.cnc_mode;
+  auto run = [&](size_t j) {
+    Part& p = ps[j];
+    ParsedFile& out = j == 0 ? pf : p.out;  // the first part goes straight into the result
+    if (j > 0) {
+      out = ParsedFile{};
+      out.source = &file;
+      out.lines.source_ = &file;
+    }
+    out.commands.recs_.reserve(first[j + 1] - first[j] + 1);
+    LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
+    lp.parse_lines(first[j], first[j + 1], false, any_del);
+    p.cnc_out = lp.lex_.cnc;
+  };
+  run_tasks(parts, parts, run);
+  for (unsigned j = 1; j < parts; ++j) {
+    if (ps[j].cnc_in != ps[j - 1].cnc_out) {
+      ps[j].cnc_in = ps[j - 1].cnc_out;
+      run(j);
+    }
+  }
+  for (unsigned j = 1; j < parts; ++j) join_part(pf, std::move(ps[j].out), first[j], first[j + 1]);
+}
+
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   static std::atomic<uint64_t> serials{0};
   ParsedFile pf;
@@ -742,27 +860,17 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   const std::string_view t = file.text();
   const bool any_nul = std::memchr(t.data(), '\0', t.size()) != nullptr;
   const bool any_del = std::memchr(t.data(), 0x7f, t.size()) != nullptr;
-  // Exact for lines (plus NUL splits); a config has about one command per line. Reserved, untouched pages cost
-  // no memory, and no vector is copied while it grows on large files.
-  pf.lines.recs_.reserve(file.line_count() + 1);
-  pf.commands.recs_.reserve(file.line_count() + 1);
-  LineParser lp(pf, opts);
-  for (uint32_t i = 0; i < file.line_count(); ++i) {
-    const Span ls = file.line_span(i);
-    uint32_t b = ls.begin;
-    bool after_nul = false;
-    for (;;) {
-      const void* nul = any_nul ? std::memchr(t.data() + b, '\0', ls.end - b) : nullptr;
-      const uint32_t e = nul ? static_cast<uint32_t>(static_cast<const char*>(nul) - t.data()) : ls.end;
-      lp.next_cnc_ = lp.lex_.cnc;
-      lp.parse_logical_line(b, e, after_nul, any_del);
-      lp.lex_.cnc = lp.next_cnc_;
-      if (any_nul) pf.lines.spans_.push_back(Span{b, e});
-      if (!nul) break;
-      pf.errors.push_back({Span{e, e + 1}, "NUL byte: RRF ends the line here and reads the rest as a new line"});
-      b = e + 1;
-      after_nul = true;
-    }
+  const size_t parts =
+      any_nul || opts.threads < 2 || opts.part_bytes == 0 ? 1 : std::min<size_t>(opts.threads, file.size() / opts.part_bytes);
+  if (parts > 1) {
+    LineParser::parse_in_parts(pf, opts, static_cast<unsigned>(parts), any_del);
+  } else {
+    // Exact for lines (plus NUL splits); a config has about one command per line. Reserved, untouched pages
+    // cost no memory, and no vector is copied while it grows on large files.
+    pf.lines.recs_.reserve(file.line_count() + 1);
+    pf.commands.recs_.reserve(file.line_count() + 1);
+    LineParser lp(pf, opts.cnc_mode);
+    lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
   compute_blocks(pf);
   return pf;

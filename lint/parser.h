@@ -13,7 +13,9 @@
 #include <cstdint>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -125,6 +127,11 @@ struct ParseError {
 
 struct ParseOptions {
   bool cnc_mode = false;  // `( )` comments are recognised only in CNC mode (M453)
+  /// A large file is cut at line starts into parts of at least `part_bytes`, parsed on up to `threads` threads
+  /// and joined. The result is the same as a parse on one thread (a part that a mode switch before it changes is
+  /// parsed again).
+  unsigned threads = 1;
+  size_t part_bytes = size_t{2} << 20;
 };
 
 namespace detail {
@@ -151,25 +158,45 @@ enum CommandBits : uint8_t {
 };
 
 // The stored form of a line: 20 bytes. Spans, the comment and the meta-command parts are recovered on decoding.
+// Both records are trivial (no member initialisers): LineTable::put and CommandTable::add write every field, and a
+// table sized ahead of a parse in parts is not zeroed first (DefaultInit below).
 struct LineRec {
-  uint32_t code_begin = 0, code_end = 0;
-  uint32_t first = 0;        // Commands/Bad: first command; Meta: index into the meta table
-  uint16_t indent = 0;         // saturated: the exact value is then in LineTable::long_lines_
-  uint16_t stored_length = 0;  // saturated: likewise
-  uint16_t command_count = 0;  // saturated: the exact count is then in LineTable::big_counts_
-  uint8_t kind_meta = 0;     // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
-  uint8_t flags = 0;         // LineFlag bits
+  uint32_t code_begin, code_end;
+  uint32_t first;            // Commands/Bad: first command; Meta: index into the meta table
+  uint16_t indent;           // saturated: the exact value is then in LineTable::long_lines_
+  uint16_t stored_length;    // saturated: likewise
+  uint16_t command_count;    // saturated: the exact count is then in LineTable::big_counts_
+  uint8_t kind_meta;         // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
+  uint8_t flags;             // LineFlag bits
 };
 
 // The stored form of a command: 20 bytes.
 struct CommandRec {
-  uint32_t begin = 0, end = 0;  // the command's span
-  uint32_t line = 0;
-  int32_t number = -1;
-  uint8_t word_len = 0;     // saturated: the exact word is then in CommandTable::long_words_
-  int8_t fraction = -1;
-  uint8_t bits = 0;         // letter (2 bits) and CommandFlag bits
-  uint8_t param_count = 0;  // saturated: the exact count is then in CommandTable::big_counts_
+  uint32_t begin, end;  // the command's span
+  uint32_t line;
+  int32_t number;
+  uint8_t word_len;     // saturated: the exact word is then in CommandTable::long_words_
+  int8_t fraction;
+  uint8_t bits;         // letter (2 bits) and CommandFlag bits
+  uint8_t param_count;  // saturated: the exact count is then in CommandTable::big_counts_
+};
+
+// An allocator that leaves trivial elements uninitialised on resize() (the parser writes each one).
+template <class T>
+struct DefaultInit : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInit<U>;
+  };
+  using std::allocator<T>::allocator;
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
 };
 
 }  // namespace detail
@@ -207,8 +234,8 @@ class DecodingIterator {
 class CommandTable {
  public:
   Command operator[](size_t i) const;
-  size_t size() const { return recs_.size(); }
-  bool empty() const { return recs_.empty(); }
+  size_t size() const { return recs_.size() + tail_size_; }
+  bool empty() const { return size() == 0; }
   DecodingIterator<CommandTable, Command> begin() const { return {this, 0}; }
   DecodingIterator<CommandTable, Command> end() const { return {this, size()}; }
 
@@ -217,9 +244,20 @@ class CommandTable {
   friend struct ParsedFile;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   void add(const Command& c);
+  /// Appends the commands of a later part of the file (a parse in parts); `part` is left empty.
+  void append(CommandTable&& part);
   uint32_t long_word_end(size_t i) const;
   uint32_t big_count(size_t i) const;
+  const detail::CommandRec& rec(size_t i) const { return i < recs_.size() ? recs_[i] : tail_rec(i); }
+  const detail::CommandRec& tail_rec(size_t i) const;
   std::vector<detail::CommandRec> recs_;
+  // A file parsed in parts keeps the later parts' records as they were made, after recs_: no copy, no peak.
+  struct Tail {
+    size_t begin;  // the index of its first command
+    std::vector<detail::CommandRec> recs;
+  };
+  std::vector<Tail> tails_;
+  size_t tail_size_ = 0;
   std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words of 255 bytes or more
   std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
 };
@@ -241,6 +279,8 @@ class LineTable {
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void compute_blocks(ParsedFile&);
   void add(const Line& l);
+  /// Stores line `i` into `dst`: its meta-command parts and any saturated counts go to this table.
+  void put(detail::LineRec& dst, uint32_t i, const Line& l);
   uint32_t big_count(size_t i) const;
   uint32_t long_indent(size_t i) const;
   uint32_t long_length(size_t i) const;
@@ -248,7 +288,7 @@ class LineTable {
     Span arg, name;
   };
   const SourceFile* source_ = nullptr;
-  std::vector<detail::LineRec> recs_;
+  std::vector<detail::LineRec, detail::DefaultInit<detail::LineRec>> recs_;
   std::vector<MetaRec> metas_;
   std::vector<Span> spans_;  // every logical line's span, kept only when the file has NUL bytes
   std::map<uint32_t, uint32_t> big_counts_;  // line -> command count, for 65535 or more
@@ -309,7 +349,7 @@ struct ParsedFile {
 };
 
 RRFLINT_ALWAYS_INLINE inline Command CommandTable::operator[](size_t i) const {
-  const detail::CommandRec& r = recs_[i];
+  const detail::CommandRec& r = rec(i);
   Command c;
   c.span = Span{r.begin, r.end};
   c.word = Span{r.begin, r.word_len < 255 ? r.begin + r.word_len : long_word_end(i)};

@@ -75,6 +75,11 @@ class Machine {
   size_t unit_count() const { return units_.size(); }
   const std::vector<LoadProblem>& problems() const { return problems_; }
   FileReader& reader() { return reader_; }
+  /// Threads a large file's parse may use, in parts of at least `part_bytes` (ParseOptions).
+  void set_threads(unsigned n, size_t part_bytes) {
+    threads_ = n;
+    part_bytes_ = part_bytes;
+  }
   /// Records the files the reader lists, so rules can ask whether a file exists without reading it.
   void set_listing(const std::vector<std::string>& sd_paths);
   /// Does the SD card hold this file (case-insensitive)? Looks in the listing and in what was loaded.
@@ -90,6 +95,8 @@ class Machine {
   std::vector<std::unique_ptr<FileUnit>> units_;
   std::map<std::string, int32_t> by_path_;  // lower-cased SD path -> unit index, or -1 when missing
   std::vector<LoadProblem> problems_;
+  unsigned threads_ = 1;
+  size_t part_bytes_ = 0;
   std::map<std::string, bool> listing_;  // lower-cased SD paths
   mutable std::map<std::pair<char, int32_t>, std::pair<size_t, bool>> code_uses_;  // code -> (units seen, used)
 };

@@ -422,6 +422,19 @@ void run_case(FixtureCase& c) {
       if (std::find(b.begin(), b.end(), x) == b.end())
         FAIL_CHECK(c.name << ": found only with the rule's `on` list: " << x);
   }
+  {
+    // Threads change nothing: files parsed in parts of a few bytes, file rules beside the forward pass.
+    LintOptions split = opts.lint;
+    split.threads = 3;
+    split.part_bytes = 16;
+    auto threaded = lint_card(card, split);
+    auto list = [](const auto& findings) {
+      std::vector<std::string> out;
+      for (const Finding& f : findings) out.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+      return out;
+    };
+    CHECK(list(threaded->findings) == list(run->findings));
+  }
 
   if (c.rule != "syntax-error") {
     const Machine& m = *run->result.machine;

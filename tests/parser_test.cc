@@ -468,3 +468,85 @@ TEST_CASE("parser: records that overflow their compact fields decode exactly", "
   CHECK_FALSE(blocks.pf.lines[2].conditional);
   CHECK(p.pf.errors.empty());
 }
+
+namespace {
+
+// Every field of a parse, one line per line record, command and error: two parses are the same when these are.
+std::string full_dump(const Parsed& p) {
+  const ParsedFile& pf = p.pf;
+  std::string out;
+  auto span = [](Span s) { return std::to_string(s.begin) + "-" + std::to_string(s.end); };
+  for (size_t i = 0; i < pf.lines.size(); ++i) {
+    const Line& l = pf.lines[i];
+    out += "L" + std::to_string(i) + " " + render_line(pf, l) + " span=" + span(l.span) + " code=" + span(l.code) +
+           " comment=" + span(l.comment) + " stored=" + std::to_string(l.stored_length) +
+           " first=" + std::to_string(l.first_command) + " n=" + std::to_string(l.command_count) +
+           " arg=" + span(l.meta_arg) + " name=" + span(l.meta_name) + " flags=" + std::to_string(l.indent_tabs) +
+           std::to_string(l.indent_spaces) + std::to_string(l.line_number) + std::to_string(l.checksum) + "\n";
+  }
+  for (size_t i = 0; i < pf.commands.size(); ++i) {
+    const Command& c = pf.commands[i];
+    out += "C" + std::to_string(i) + " " + span(c.span) + " word=" + span(c.word) + " line=" + std::to_string(c.line) +
+           " params=" + std::to_string(c.param_count) + " flags=" + std::to_string(c.cnc) +
+           std::to_string(c.any_exponent) + std::to_string(c.any_blank_before_colon) +
+           std::to_string(c.any_repeated_letter) + std::to_string(c.has_number) + "\n";
+  }
+  for (const ParseError& e : pf.errors) out += "E " + span(e.span) + " " + e.message + "\n";
+  for (Span s : pf.semicolon_cuts) out += "S " + span(s) + "\n";
+  out += pf.mixed_indentation ? "mixed\n" : "";
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("parser: a file parsed in parts on several threads parses as on one", "[parser]") {
+  // Lines of every kind, among them mode switches (a part after an M453 is parsed again in CNC mode), records
+  // that overflow, errors, cut expressions, blocks and a DEL byte.
+  const std::vector<std::string> kinds = {
+      "G1 X10 Y20 E0.5 F1800 ; move",
+      "M453 ; CNC mode from the next line",
+      "G1 X1 (a comment only in CNC mode) Y2",
+      "M452",
+      "if move.axes[0].homed",
+      "  G1 X{move.axes[0].max - 5} Y3",
+      "  while iterations < 3",
+      "\t  M400",
+      "else",
+      "  echo \"unterminated",
+      "N10 G1 X5*71 ; checksum",
+      "M98 P\"macro.g\" G4 S1",
+      "G1 X{1 + ; cut} Y2",
+      "set var.x = {1",
+      "bogus line",
+      "T{" + std::string(300, '7') + "} P0",
+      "M584 X0 Y1 Z2 E3:4 :5",
+      "G10 P0 X80E420 X1",
+      ";comment at column 0",
+      "",
+      "G1 X1\x7f ignored",
+      "M117 Printing (50%)",
+      "var y = (1 + 2",
+  };
+  std::string many_params = "M92";
+  for (int i = 0; i < 300; ++i) many_params += " X" + std::to_string(i);
+  std::string text;
+  for (int i = 0; i < 4000; ++i) {
+    text += kinds[(i * 7 + i / 13) % kinds.size()] + (i % 5 == 0 ? "\r\n" : "\n");
+    if (i % 1000 == 999) text += many_params + "\n";
+  }
+  const std::string serial = full_dump(parse_text(text));
+  CHECK(serial.find("\nE ") != std::string::npos);  // the text has errors,
+  CHECK(serial.find("\nS ") != std::string::npos);  // cut expressions,
+  CHECK(serial.find("flags=1") != std::string::npos);  // CNC-mode commands
+  for (unsigned threads : {2u, 3u, 4u, 7u}) {
+    for (size_t part : {size_t{1}, size_t{700}, text.size() / 3}) {
+      INFO("threads " << threads << ", parts of " << part << " bytes");
+      const std::string split = full_dump(parse_text(text, ParseOptions{.threads = threads, .part_bytes = part}));
+      CHECK(split == serial);
+    }
+  }
+  // Started in CNC mode (a macro run from a CNC config), every part agrees too.
+  const ParseOptions cnc{.cnc_mode = true};
+  CHECK(full_dump(parse_text(text, ParseOptions{.cnc_mode = true, .threads = 3, .part_bytes = 500})) ==
+        full_dump(parse_text(text, cnc)));
+}
