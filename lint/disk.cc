@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <system_error>
 
+#include "memory.h"
+
 namespace fs = std::filesystem;
 
 namespace rrflint {
@@ -100,7 +102,11 @@ std::optional<std::string> read_file(const std::string& path, std::string* error
   // A file with a size: that many bytes (the file as it was when opened). Without one (empty, a pipe, /proc):
   // on to the end.
   const bool sized = S_ISREG(st.st_mode) && st.st_size > 0;
-  std::string s(sized ? static_cast<size_t>(st.st_size) : 0, '\0');
+  std::string s;
+  if (sized) {
+    reserve_huge(s, static_cast<size_t>(st.st_size));
+    s.resize(static_cast<size_t>(st.st_size));
+  }
   size_t got = 0;
   char more[4096];
   while (!sized || got < s.size()) {

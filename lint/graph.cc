@@ -4,6 +4,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "memory.h"
 #include "values.h"
 
 namespace rrflint {
@@ -33,6 +34,8 @@ void NodeTable::push_back(const Node& n) {
   full_.push_back(n);
   recs_.push_back(Rec{static_cast<uint32_t>(full_.size() - 1), kFull});
 }
+
+void NodeTable::reserve(size_t n) { reserve_huge(recs_, n); }
 
 namespace {
 
@@ -178,6 +181,10 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
 }
 
 Graph Builder::build() {
+  // About one node per command of the files loaded so far: no copy while the table grows on a large file.
+  size_t commands = 0;
+  for (uint32_t i = 0; i < m_.unit_count(); ++i) commands += m_.unit(i).parsed.commands.size();
+  g_.nodes.reserve(commands + 64);
   // Boot: config.g (fallback config.g.bak), then runonce.g.
   const FileUnit* config = m_.load(o_.sys_dir + "/config.g");
   if (!config) config = m_.load(o_.sys_dir + "/config.g.bak");

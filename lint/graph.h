@@ -68,6 +68,7 @@ class NodeTable {
   DecodingIterator<NodeTable, Node> begin() const { return {this, 0}; }
   DecodingIterator<NodeTable, Node> end() const { return {this, size()}; }
   void push_back(const Node& n);
+  void reserve(size_t n);
 
  private:
   static constexpr uint32_t kFull = UINT32_MAX, kMaybe = 1u << 31;

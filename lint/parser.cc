@@ -6,6 +6,11 @@
 
 #include <fmt/format.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "memory.h"
 #include "parallel.h"
 
 namespace rrflint {
@@ -40,6 +45,59 @@ struct ByteClasses {
 };
 constexpr ByteClasses kBytes;
 
+// The first position in [p, e) whose byte is in a class, or e. With SSE2, 16 bytes are tested at a time wherever
+// 16 bytes of the buffer (size n) remain; the bits past e are masked off. `Sse` maps 16 bytes to a bit mask.
+template <class Sse>
+RRFLINT_ALWAYS_INLINE inline uint32_t find_class(const char* s, uint32_t n, uint32_t p, uint32_t e, const bool* table,
+                                                 [[maybe_unused]] Sse sse) {
+#if defined(__SSE2__)
+  while (p < e && p + 16 <= n) {
+    auto m = static_cast<unsigned>(_mm_movemask_epi8(sse(_mm_loadu_si128(reinterpret_cast<const __m128i*>(s + p)))));
+    if (e - p < 16) m &= (1u << (e - p)) - 1;
+    if (m) return p + static_cast<unsigned>(__builtin_ctz(m));
+    p += 16;
+  }
+  if (p >= e) return e;
+#endif
+  while (p < e && !table[static_cast<unsigned char>(s[p])]) ++p;
+  return p;
+}
+
+#if defined(__SSE2__)
+RRFLINT_ALWAYS_INLINE inline __m128i any_of(__m128i v, char a, char b) {
+  return _mm_or_si128(_mm_cmpeq_epi8(v, _mm_set1_epi8(a)), _mm_cmpeq_epi8(v, _mm_set1_epi8(b)));
+}
+// ASCII letters: (v | 0x20) - 'a' < 26, compared unsigned by flipping the sign bits.
+RRFLINT_ALWAYS_INLINE inline __m128i letters(__m128i v) {
+  const __m128i off = _mm_sub_epi8(_mm_or_si128(v, _mm_set1_epi8(0x20)), _mm_set1_epi8('a'));
+  return _mm_cmplt_epi8(_mm_xor_si128(off, _mm_set1_epi8(static_cast<char>(0x80))),
+                        _mm_set1_epi8(static_cast<char>(0x80 + 26)));
+}
+#endif
+
+// The next byte that ends a value (kBytes.value_stop), or e.
+RRFLINT_ALWAYS_INLINE inline uint32_t next_value_stop(const char* s, uint32_t n, uint32_t p, uint32_t e) {
+#if defined(__SSE2__)
+  return find_class(s, n, p, e, kBytes.value_stop, [](__m128i v) {
+    return _mm_or_si128(_mm_or_si128(letters(v), any_of(v, '"', '{')),
+                        _mm_or_si128(any_of(v, '(', '\''), _mm_cmpeq_epi8(v, _mm_set1_epi8(':'))));
+  });
+#else
+  return find_class(s, n, p, e, kBytes.value_stop, 0);
+#endif
+}
+
+// The next byte that can end the code or change quoting (kBytes.code_stop), or e.
+RRFLINT_ALWAYS_INLINE inline uint32_t next_code_stop(const char* s, uint32_t n, uint32_t p, uint32_t e) {
+#if defined(__SSE2__)
+  return find_class(s, n, p, e, kBytes.code_stop, [](__m128i v) {
+    return _mm_or_si128(_mm_or_si128(any_of(v, '"', '{'), any_of(v, '}', ';')), any_of(v, '*', '('));
+  });
+#else
+  return find_class(s, n, p, e, kBytes.code_stop, 0);
+#endif
+}
+
 // A command whose one string argument needs no letter (M117 text); a fraction makes it another command.
 bool unlettered_string(const Command& c) { return c.fraction < 0 && takes_unlettered_string(c.letter, c.number); }
 
@@ -56,10 +114,11 @@ struct Lexer {
     if (out) out->errors.push_back({Span{b, e}, std::move(msg)});
   }
   uint32_t skip_blanks(uint32_t p, uint32_t e) const {
+    const char* const s = t.data();
     for (;;) {
-      while (p < e && is_blank(t[p])) ++p;
-      if (cnc && p < e && t[p] == '(') {  // CNC-mode ( ) comment, treated as a blank
-        while (p < e && t[p] != ')') ++p;
+      while (p < e && is_blank(s[p])) ++p;
+      if (cnc && p < e && s[p] == '(') {  // CNC-mode ( ) comment, treated as a blank
+        while (p < e && s[p] != ')') ++p;
         if (p < e) ++p;
         continue;
       }
@@ -126,48 +185,53 @@ struct Lexer {
 uint32_t Lexer::parse_value(uint32_t p, uint32_t e, Param& param) const {
   // A value runs to the next parameter letter (or G/M command letter) outside quotes and braces.
   // An E or e straight after a digit is an exponent, not a parameter (rrf-semantics §1.8).
+  const char* const s = t.data();
+  const auto n = static_cast<uint32_t>(t.size());
   const uint32_t vb = skip_blanks(p, e);
   uint32_t q = vb;
-  bool colon = false;
-  while (q < e) {
-    if (!kBytes.value_stop[static_cast<unsigned char>(t[q])]) {
-      ++q;
-      continue;
+  bool colon = false, has_expr = false, exponent = false, blank_colon = false;
+  for (;;) {
+    q = next_value_stop(s, n, q, e);
+    if (q >= e) break;
+    const char c = s[q];
+    if (is_alpha(c)) {
+      if ((c == 'E' || c == 'e') && q > vb && is_digit(s[q - 1])) {
+        exponent = true;
+        ++q;
+        if (q < e && (s[q] == '+' || s[q] == '-')) ++q;
+        continue;
+      }
+      break;
     }
-    const char c = t[q];
     if (c == '"') {
       q = skip_string(q, e);
       continue;
     }
     if (c == '{') {
-      param.has_expr = true;
+      has_expr = true;
       q = skip_braces(q, e);
       continue;
     }
-    if (cnc && c == '(') break;
-    if (is_alpha(c)) {
-      if ((c == 'E' || c == 'e') && q > vb && is_digit(t[q - 1])) {
-        param.exponent_letter = true;
-        ++q;
-        if (q < e && (t[q] == '+' || t[q] == '-')) ++q;
-        continue;
-      }
-      break;
-    }
-    if (c == '\'' && q + 1 < e && is_alpha(t[q + 1])) break;
-    if (c == ':') {
+    if (c == '(') {
+      if (cnc) break;
+    } else if (c == '\'') {
+      if (q + 1 < e && is_alpha(s[q + 1])) break;
+    } else {  // ':'
       colon = true;
-      if (q > vb && is_blank(t[q - 1])) param.blank_before_colon = true;
+      if (q > vb && is_blank(s[q - 1])) blank_colon = true;
     }
     ++q;
   }
   uint32_t ve = q;
-  while (ve > vb && is_blank(t[ve - 1])) --ve;
+  while (ve > vb && is_blank(s[ve - 1])) --ve;
   param.value = Span{vb, ve};
+  param.has_expr = has_expr;
+  param.exponent_letter = exponent;
+  param.blank_before_colon = blank_colon;
   if (vb == ve) {
     param.kind = ValueKind::None;
   } else {
-    const char f = t[vb];
+    const char f = s[vb];
     if (colon) param.kind = ValueKind::List;
     else if (f == '"') param.kind = ValueKind::String;
     else if (f == '{') param.kind = ValueKind::Expression;
@@ -432,20 +496,15 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool
   uint32_t code_end = e;
   uint32_t paren_chars = 0;
   {
-    bool in_quote = false;
     int braces = 0;
-    for (uint32_t k = p; k < e; ++k) {
-      if (in_quote) {  // to the closing quote ("" re-enters at once: same result)
-        const void* q = std::memchr(t.data() + k, '"', e - k);
+    const char* const s = t.data();
+    const auto n = static_cast<uint32_t>(t.size());
+    for (uint32_t k = next_code_stop(s, n, p, e); k < e; k = next_code_stop(s, n, k + 1, e)) {
+      const char c = s[k];
+      if (c == '"') {  // on to the closing quote ("" re-enters at once: same result)
+        const void* q = std::memchr(s + k + 1, '"', e - k - 1);
         if (!q) break;
-        k = static_cast<uint32_t>(static_cast<const char*>(q) - t.data());
-        in_quote = false;
-        continue;
-      }
-      const char c = t[k];
-      if (!kBytes.code_stop[static_cast<unsigned char>(c)]) continue;
-      if (c == '"') {
-        in_quote = true;
+        k = static_cast<uint32_t>(static_cast<const char*>(q) - s);
       } else if (c == '{') {
         ++braces;
       } else if (c == '}') {
@@ -821,7 +880,8 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
   first[parts] = file.line_count();
   for (unsigned j = 1; j < parts; ++j)
     first[j] = std::max(first[j - 1], file.line_of(static_cast<uint32_t>(uint64_t{file.size()} * j / parts)));
-  pf.lines.recs_.resize(file.line_count());
+  reserve_huge(pf.lines.recs_, file.line_count());
+  pf.lines.recs_.resize(file.line_count());  // not initialised (DefaultInit): each part writes its lines
   struct Part {
     ParsedFile out;
     bool cnc_in = false, cnc_out = false;
@@ -836,7 +896,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
       out.source = &file;
       out.lines.source_ = &file;
     }
-    out.commands.recs_.reserve(first[j + 1] - first[j] + 1);
+    reserve_huge(out.commands.recs_, first[j + 1] - first[j] + 1);
     LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
@@ -867,8 +927,8 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   } else {
     // Exact for lines (plus NUL splits); a config has about one command per line. Reserved, untouched pages
     // cost no memory, and no vector is copied while it grows on large files.
-    pf.lines.recs_.reserve(file.line_count() + 1);
-    pf.commands.recs_.reserve(file.line_count() + 1);
+    reserve_huge(pf.lines.recs_, file.line_count() + 1);
+    reserve_huge(pf.commands.recs_, file.line_count() + 1);
     LineParser lp(pf, opts.cnc_mode);
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }

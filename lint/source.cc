@@ -3,26 +3,35 @@
 #include <algorithm>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "memory.h"
+
 namespace rrflint {
 
 SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes)
     : id_(id), display_(std::move(display)), sd_path_(std::move(sd_path)), bytes_(std::move(bytes)) {
   const char* base = bytes_.data();
   const size_t n = bytes_.size();
-  line_starts_.reserve(n / 32 + 1);
+  reserve_huge(line_starts_, n / 16 + 1);  // untouched pages cost nothing; a reallocation would copy
   line_starts_.push_back(0);
   const bool any_cr = std::memchr(base, '\r', n) != nullptr;
   if (!any_cr) {
-    // Fast path: LF only, found with memchr.
-    const char* p = base;
-    const char* end = base + n;
-    while (p < end) {
-      const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<size_t>(end - p)));
-      if (!nl) break;
-      line_starts_.push_back(static_cast<uint32_t>(nl - base + 1));
-      ++endings_.lf;
-      p = nl + 1;
+    // Fast path: LF only, 16 bytes at a time (a memchr call per line costs more on ~30-byte lines).
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128i nl = _mm_set1_epi8('\n');
+    for (; i + 16 <= n; i += 16) {
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + i));
+      for (auto mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, nl))); mask; mask &= mask - 1)
+        line_starts_.push_back(static_cast<uint32_t>(i + static_cast<unsigned>(__builtin_ctz(mask)) + 1));
     }
+#endif
+    for (; i < n; ++i)
+      if (base[i] == '\n') line_starts_.push_back(static_cast<uint32_t>(i + 1));
+    endings_.lf = static_cast<uint32_t>(line_starts_.size() - 1);
   } else {
     for (size_t i = 0; i < n; ++i) {
       const char c = base[i];

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <map>
 #include <set>
 #include <tuple>
@@ -39,7 +40,9 @@ std::optional<Directive> parse_comment(const ParsedFile& pf, const Line& line) {
   const std::string_view text = pf.source->text();
   const uint32_t end = line.comment.end;
   for (uint32_t semi = line.comment.begin; semi < end; ++semi) {
-    if (text[semi] != ';') continue;
+    const void* next = std::memchr(text.data() + semi, ';', end - semi);
+    if (!next) break;
+    semi = static_cast<uint32_t>(static_cast<const char*>(next) - text.data());
     uint32_t p = semi + 1;
     while (p < end && blank(text[p])) ++p;
     if (end - p < 7 || !ieq(text.substr(p, 7), "rrflint")) continue;

@@ -550,3 +550,19 @@ TEST_CASE("parser: a file parsed in parts on several threads parses as on one", 
   CHECK(full_dump(parse_text(text, ParseOptions{.cnc_mode = true, .threads = 3, .part_bytes = 500})) ==
         full_dump(parse_text(text, cnc)));
 }
+
+TEST_CASE("source: the line index finds every line start, whatever the alignment", "[parser]") {
+  // Lines of every length from 0 to 40 bytes, so that LFs fall on every position of a 16-byte block.
+  for (size_t shift = 0; shift < 17; ++shift) {
+    std::string text(shift, 'x');
+    for (int len = 0; len <= 40; ++len) text += std::string(static_cast<size_t>(len), 'G') + "\n";
+    text += "tail";
+    std::vector<uint32_t> starts{0};
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') starts.push_back(static_cast<uint32_t>(i + 1));
+    const SourceFile f(0, "t.g", "/sys/t.g", text);
+    REQUIRE(f.line_count() == starts.size());
+    for (uint32_t l = 0; l < starts.size(); ++l) CHECK(f.line_span(l).begin == starts[l]);
+    CHECK(f.endings().lf == starts.size() - 1);
+  }
+}
