@@ -748,7 +748,9 @@ void compute_blocks(ParsedFile& pf) {
     const uint32_t indent = line.indent < 65535 ? line.indent : pf.lines.long_indent(li);
     const auto kind = static_cast<LineKind>(line.kind_meta & 7);
     const auto meta = static_cast<MetaKind>((line.kind_meta >> 3) & 15);
+    if (line.flags & detail::kLineNumber) pf.any_line_number = true;
     if (kind != LineKind::Commands && kind != LineKind::Meta && kind != LineKind::Bad) continue;
+    if (line.flags & detail::kIndentTabs) pf.any_tab_indent = true;
     while (stack.size() > 1 && indent < stack.back().indent) stack.pop_back();
     if (indent > stack.back().indent) {
       const bool opener = prev_meta == MetaKind::If || prev_meta == MetaKind::Elif || prev_meta == MetaKind::Else ||
@@ -911,6 +913,56 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
   for (unsigned j = 1; j < parts; ++j) join_part(pf, std::move(ps[j].out), first[j], first[j + 1]);
 }
 
+namespace {
+
+// Code keys: G0…G1023, then M0…M1023, then every T.
+constexpr uint16_t kTKey = 2048, kNoKey = 2049;
+uint16_t code_key(char letter, int32_t number) {
+  if (letter == 'T') return kTKey;
+  if (number < 0 || number >= 1024) return kNoKey;
+  return static_cast<uint16_t>((letter == 'M' ? 1024 : 0) + number);
+}
+
+}  // namespace
+
+// Links every command to the next of its code, from the end backwards, and records each code's first command.
+void index_codes(ParsedFile& pf) {
+  const size_t n = pf.commands.size();
+  pf.code_next_.resize(n);
+  std::vector<uint32_t> first(kNoKey + 1, CodeCommands::kEnd);
+  bool exponent = false, blank_colon = false, repeated = false;
+  for (size_t i = n; i-- > 0;) {
+    const detail::CommandRec& r = pf.commands.rec(i);
+    const unsigned l = r.bits & detail::kLetterMask;
+    const uint16_t key = code_key(l == 0 ? 'G' : l == 1 ? 'M' : 'T', r.number);
+    pf.code_next_[i] = first[key];
+    first[key] = static_cast<uint32_t>(i);
+    exponent = exponent || (r.bits & detail::kAnyExponent);
+    blank_colon = blank_colon || (r.bits & detail::kAnyBlankColon);
+    repeated = repeated || (r.bits & detail::kAnyRepeat);
+  }
+  for (uint16_t k = 0; k < kNoKey; ++k)
+    if (first[k] != CodeCommands::kEnd) pf.code_first_.emplace_back(k, first[k]);
+  pf.any_exponent = exponent;
+  pf.any_blank_before_colon = blank_colon;
+  pf.any_repeated_letter = repeated;
+}
+
+CodeCommands ParsedFile::with_code(char letter, int32_t number) const {
+  const uint16_t key = code_key(letter, number);
+  auto it = std::lower_bound(code_first_.begin(), code_first_.end(), key,
+                             [](const std::pair<uint16_t, uint32_t>& e, uint16_t k) { return e.first < k; });
+  if (key == kNoKey || it == code_first_.end() || it->first != key) return CodeCommands(code_next_.data(), CodeCommands::kEnd);
+  return CodeCommands(code_next_.data(), it->second);
+}
+
+std::vector<std::pair<char, int32_t>> ParsedFile::codes() const {
+  std::vector<std::pair<char, int32_t>> out;
+  for (const auto& [key, first] : code_first_)
+    out.emplace_back(key == kTKey ? 'T' : key >= 1024 ? 'M' : 'G', key == kTKey ? -1 : key % 1024);
+  return out;
+}
+
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   static std::atomic<uint64_t> serials{0};
   ParsedFile pf;
@@ -933,6 +985,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
   compute_blocks(pf);
+  index_codes(pf);
   return pf;
 }
 

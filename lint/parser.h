@@ -243,6 +243,7 @@ class CommandTable {
   friend class LineParser;
   friend struct ParsedFile;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
+  friend void index_codes(ParsedFile&);
   void add(const Command& c);
   /// Appends the commands of a later part of the file (a parse in parts); `part` is left empty.
   void append(CommandTable&& part);
@@ -268,6 +269,9 @@ class LineTable {
   Line operator[](size_t i) const;
   /// Line i's `conditional || in_loop`, without decoding the line (the graph asks for every command it runs).
   bool in_block(size_t i) const { return recs_[i].flags & (detail::kConditional | detail::kInLoop); }
+  /// Line i's kind and code, without decoding the line (a rule skips most lines on these).
+  LineKind kind(size_t i) const { return static_cast<LineKind>(recs_[i].kind_meta & 7); }
+  Span code(size_t i) const { return Span{recs_[i].code_begin, recs_[i].code_end}; }
   size_t size() const { return recs_.size(); }
   bool empty() const { return recs_.empty(); }
   DecodingIterator<LineTable, Line> begin() const { return {this, 0}; }
@@ -329,6 +333,45 @@ class ParamRange {
   Command c_;
 };
 
+/// The indices of a file's commands of one code, in file order (ParsedFile::with_code).
+class CodeCommands {
+ public:
+  static constexpr uint32_t kEnd = UINT32_MAX;
+  class iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = uint32_t;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const uint32_t*;
+    using reference = uint32_t;
+    iterator() = default;
+    iterator(const uint32_t* next, uint32_t i) : next_(next), i_(i) {}
+    uint32_t operator*() const { return i_; }
+    iterator& operator++() {
+      i_ = next_[i_];
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator r = *this;
+      ++*this;
+      return r;
+    }
+    friend bool operator==(const iterator& a, const iterator& b) { return a.i_ == b.i_; }
+
+   private:
+    const uint32_t* next_ = nullptr;
+    uint32_t i_ = kEnd;
+  };
+  CodeCommands(const uint32_t* next, uint32_t first) : next_(next), first_(first) {}
+  iterator begin() const { return {next_, first_}; }
+  iterator end() const { return {next_, kEnd}; }
+  bool empty() const { return first_ == kEnd; }
+
+ private:
+  const uint32_t* next_;
+  uint32_t first_;
+};
+
 struct ParsedFile {
   const SourceFile* source = nullptr;
   LineTable lines;
@@ -338,7 +381,19 @@ struct ParsedFile {
   /// meta-command expression) to the end of the code; the ';' follows after optional blanks.
   std::vector<Span> semicolon_cuts;
   bool mixed_indentation = false;
+  // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
+  bool any_exponent = false;
+  bool any_blank_before_colon = false;
+  bool any_repeated_letter = false;
+  bool any_line_number = false;  // some line starts with N…
+  bool any_tab_indent = false;   // some line of code is indented with a tab
   uint64_t serial = 0;  // unique per parse (keys find()'s cache)
+
+  /// The commands with this letter and number (any fraction), in file order, as indices into `commands`. For
+  /// 'T' every T command, whatever its number. Numbers outside 0…1023 have no list: filter `commands` for them.
+  CodeCommands with_code(char letter, int32_t number) const;
+  /// Every code the file uses, as (letter, number) in G, M, T order; T appears once, as ('T', -1).
+  std::vector<std::pair<char, int32_t>> codes() const;
 
   std::string_view text(Span s) const { return source->slice(s); }
   /// The parameters of a command, in order.
@@ -346,6 +401,13 @@ struct ParsedFile {
   /// The first parameter with this letter (RRF's Seen() finds the first one).
   ParamRef find(const Command& c, char letter) const;
   Line line_of(const Command& c) const { return lines[c.line]; }
+
+ private:
+  friend ParsedFile parse(const SourceFile&, const ParseOptions&);
+  friend void index_codes(ParsedFile&);
+  // Per code, its first command, and per command the next one of the same code (CodeCommands::kEnd: none).
+  std::vector<std::pair<uint16_t, uint32_t>> code_first_;  // (key, first command), by key
+  std::vector<uint32_t> code_next_;
 };
 
 RRFLINT_ALWAYS_INLINE inline Command CommandTable::operator[](size_t i) const {

@@ -140,13 +140,16 @@ bool Machine::has_dir(std::string_view sd_dir) const {
 
 bool Machine::uses_code(char letter, int32_t number) const {
   // Remembered with the number of units it covers: a file loaded later is scanned when next asked.
+  std::lock_guard lock(code_uses_mutex_);
   auto& [seen, used] = code_uses_[{letter, number}];
-  for (; seen < units_.size() && !used; ++seen)
-    for (const Command& c : units_[seen]->parsed.commands)
-      if (c.letter == letter && c.number == number && c.fraction < 0) {
+  for (; seen < units_.size() && !used; ++seen) {
+    const ParsedFile& pf = units_[seen]->parsed;
+    for (uint32_t i : pf.with_code(letter, number))
+      if (pf.commands[i].number == number && pf.commands[i].fraction < 0) {
         used = true;
         break;
       }
+  }
   return used;
 }
 

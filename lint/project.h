@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -99,6 +100,7 @@ class Machine {
   size_t part_bytes_ = 0;
   std::map<std::string, bool> listing_;  // lower-cased SD paths
   mutable std::map<std::pair<char, int32_t>, std::pair<size_t, bool>> code_uses_;  // code -> (units seen, used)
+  mutable std::mutex code_uses_mutex_;  // file rules run on several threads (LintOptions::threads)
 };
 
 std::string to_lower(std::string_view s);

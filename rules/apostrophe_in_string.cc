@@ -94,8 +94,9 @@ void scan(const FileContext& cx, Span s, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  for (const Line& line : pf.lines) {
-    if (!lex::contains(t, line.code, '"')) continue;  // no string on this line
+  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
+    if (!lex::contains(t, pf.lines.code(li), '"')) continue;  // no string on this line (read without decoding it)
+    const Line& line = pf.lines[li];
     if (line.kind == LineKind::Meta) {
       scan(cx, line.code, out);
       continue;

@@ -46,6 +46,7 @@ written.
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
+  if (!pf.any_blank_before_colon) return;  // the parse's summary: no command has the flag
   for (const Command& c : pf.commands) {
     if (!c.any_blank_before_colon) continue;
     for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {

@@ -1,4 +1,8 @@
 // RRF111 command-after-macro-call: commands after M98/G28/G29/G32/T on one line are not executed.
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 #include <fmt/format.h>
 
 #include "../lint/rule.h"
@@ -57,31 +61,38 @@ bool runs_macro(const Command& c) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const SourceFile& src = cx.source();
-  for (const Line& line : pf.lines) {
-    if (line.kind != LineKind::Commands || line.command_count < 2) continue;
+  // The commands that run a macro and have another command after them on their line, in file order.
+  std::vector<uint32_t> found;
+  constexpr std::pair<char, int> kMacroCodes[] = {{'T', -1}, {'M', 98}, {'G', 28}, {'G', 29}, {'G', 32}};
+  for (const auto& [letter, number] : kMacroCodes)
+    for (const uint32_t i : pf.with_code(letter, number))
+      if (i + 1 < pf.commands.size() && pf.commands[i + 1].line == pf.commands[i].line && runs_macro(pf.commands[i]))
+        found.push_back(i);
+  std::sort(found.begin(), found.end());
+  uint32_t done_line = UINT32_MAX;
+  for (const uint32_t i : found) {
+    const Command& c = pf.commands[i];
+    if (c.line == done_line) continue;  // one finding per line
+    done_line = c.line;
+    const Line& line = pf.lines[c.line];
     const uint32_t last = line.first_command + line.command_count - 1;
-    for (uint32_t i = line.first_command; i < last; ++i) {
-      const Command& c = pf.commands[i];
-      if (!runs_macro(c)) continue;
-      const Command& next = pf.commands[i + 1];
-      const Span rest{next.span.begin, pf.commands[last].span.end};
-      const uint32_t line0 = src.line_of(line.span.begin);
-      std::string terminator(src.terminator(line0));
-      if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
-      Fix fix{.title = fmt::format("move '{}' to a line of its own", lex::clip(pf.text(rest), 30)),
-              .applicability = Applicability::Unsafe};
-      fix.edits.push_back(
-          Edit{cx.at(Span{c.span.end, next.span.begin}), terminator + std::string(pf.text(lex::indentation(pf, line)))});
-      const std::string why =
-          c.letter == 'T' ? std::string("may not be executed: a 'T' command must be alone on its line")
-                          : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
-                                        lex::word(pf, c));
-      out.report(kMeta, cx.at(rest),
-                 fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c),
-                             why))
-          .fix(std::move(fix));
-      break;  // one finding per line
-    }
+    const Command& next = pf.commands[i + 1];
+    const Span rest{next.span.begin, pf.commands[last].span.end};
+    const uint32_t line0 = src.line_of(line.span.begin);
+    std::string terminator(src.terminator(line0));
+    if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
+    Fix fix{.title = fmt::format("move '{}' to a line of its own", lex::clip(pf.text(rest), 30)),
+            .applicability = Applicability::Unsafe};
+    fix.edits.push_back(
+        Edit{cx.at(Span{c.span.end, next.span.begin}), terminator + std::string(pf.text(lex::indentation(pf, line)))});
+    const std::string why =
+        c.letter == 'T' ? std::string("may not be executed: a 'T' command must be alone on its line")
+                        : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
+                                      lex::word(pf, c));
+    out.report(kMeta, cx.at(rest),
+               fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c),
+                           why))
+        .fix(std::move(fix));
   }
 }
 

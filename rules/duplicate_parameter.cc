@@ -48,6 +48,7 @@ never read it. A repeat with a different value is not fixed, since only the auth
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
+  if (!pf.any_repeated_letter) return;  // the parse's summary: no command has the flag
   for (const Command& c : pf.commands) {
     if (!c.any_repeated_letter) continue;  // most commands repeat no letter
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.

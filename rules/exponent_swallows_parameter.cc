@@ -49,6 +49,7 @@ its author intended.
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
+  if (!pf.any_exponent) return;  // the parse's summary: no command has the flag
   for (const Command& c : pf.commands) {
     if (!c.any_exponent) continue;
     for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {

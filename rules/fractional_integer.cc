@@ -79,19 +79,14 @@ size_t fraction_dot(std::string_view item) {
   return std::string_view::npos;
 }
 
-void check(const FileContext& cx, Sink& out) {
+void check_command(const FileContext& cx, const Command& c, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
-    if (c.letter == 'T' && c.fraction > 0 && c.has_number) {
-      out.report(kMeta, cx.at(c.word),
-                 fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c),
-                             c.number));
-      continue;
-    }
+  {
     const std::string_view letters = int_params(c);
     for (char letter : letters) {
       ParamRef p = pf.find(c, letter);  // RRF reads the first one
       if (!p || is_unknown_value(*p) || (p->kind != ValueKind::Number && p->kind != ValueKind::List)) continue;
+      if (!lex::contains(pf.source->text(), p->value, '.')) continue;  // the usual case: no fraction anywhere
       const std::vector<Span> items = list_items(pf, *p);
       for (size_t i = 0; i < items.size(); ++i) {
         const std::string_view item = pf.text(items[i]);
@@ -116,6 +111,19 @@ void check(const FileContext& cx, Sink& out) {
       }
     }
   }
+}
+
+void check(const FileContext& cx, Sink& out) {
+  const ParsedFile& pf = cx.parsed();
+  for (const uint32_t i : pf.with_code('T', -1)) {
+    const Command& c = pf.commands[i];
+    if (c.fraction > 0 && c.has_number)
+      out.report(kMeta, cx.at(c.word),
+                 fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c),
+                             c.number));
+  }
+  for (const IntParam& ip : kIntParams)
+    for (const uint32_t i : pf.with_code(ip.letter, ip.number)) check_command(cx, pf.commands[i], out);
 }
 
 }  // namespace

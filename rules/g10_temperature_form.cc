@@ -108,7 +108,8 @@ void check(const FileContext& cx, Sink& out) {
   // resurrect.g is written by the firmware (with G10 up to 3.4, with M568 from 3.5), not by the user.
   if (to_lower(cx.unit.sd_path).ends_with("/resurrect.g")) return;
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('G', 10)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('G', 10)) continue;
     if (!pf.find(c, 'R') && !pf.find(c, 'S')) continue;
     if (tools::g10_form(pf, c, nullptr, cx.target.version) != tools::G10Form::Tool) continue;

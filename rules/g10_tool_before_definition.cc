@@ -59,7 +59,8 @@ them), and anything between the two lines that relied on the tool not existing b
 bool any_m563_could_create(const Machine& m, int n) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
-    for (const Command& c : pf.commands) {
+    for (const uint32_t ci : pf.with_code('M', 563)) {
+      const Command& c = pf.commands[ci];
       if (!c.is('M', 563) || !g10::m563_defines(pf, c)) continue;
       auto P = get_int(pf, c, 'P');
       if (!P.known() || P.value == n) return true;

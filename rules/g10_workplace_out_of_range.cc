@@ -46,7 +46,8 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Version fw = cx.target.version;
   const bool limited = fw >= Version(3, 4, 0, 0, 0);  // TryGetLimitedUIValue('P', …, 10)
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('G', 10)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('G', 10)) continue;
     auto L = get_int(pf, c, 'L');
     if (!L.known()) continue;

@@ -57,7 +57,8 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   const char highest = highest_lowercase_axis(cx.target.board, cx.target.version);
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('M', 584)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('M', 584)) continue;
     // A command written all in lower case means upper case throughout.
     bool upper_seen = !lex::is_lower(t[c.word.begin]);

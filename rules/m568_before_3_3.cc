@@ -60,7 +60,8 @@ void check(const FileContext& cx, Sink& out) {
   const Version fw = cx.target.version;
   if (fw >= Version(3, 3, 0, 0, 0)) return;
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('M', 568)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('M', 568) || !sets_temperatures(pf, c)) continue;
     out.report(kMeta, cx.at(c.span),
                fmt::format("{} sets tool heater settings, but before RRF 3.3 M568 does nothing: RRF {} replies 'The "

@@ -47,7 +47,8 @@ M567 P2 E0.5:0.5
 void check(const FileContext& cx, Sink& out) {
   if (cx.target.version < Version(3, 3, 0, 0, 0)) return;
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('M', 568)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('M', 568) || pf.find(c, 'R') || pf.find(c, 'A') || pf.find(c, 'F')) continue;
     auto S = get_float_list(pf, c, 'S');
     if (!S.known() || S.value.size() != 1 || S.value[0] != 1) continue;

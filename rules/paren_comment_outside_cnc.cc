@@ -1,4 +1,6 @@
 // RRF112 paren-comment-outside-cnc: `( … )` is a comment only in CNC mode (after M453).
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "../lint/rule.h"
@@ -65,12 +67,18 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   // The machine mode is global: a file that never sets it may run in the CNC mode another file selects.
-  bool own_mode = false;
-  for (const Command& c : pf.commands) own_mode = own_mode || sets_mode(c);
-  if (!own_mode && cx.machine.uses_code('M', 453)) return;
+  std::vector<uint32_t> switches;  // the commands that set the mode, in order
+  for (int n : {451, 452, 453})
+    for (const uint32_t i : pf.with_code('M', n))
+      if (sets_mode(pf.commands[i])) switches.push_back(i);
+  std::sort(switches.begin(), switches.end());
+  if (switches.empty() && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
-  for (const Line& line : pf.lines) {
-    if (line.kind == LineKind::Commands && !cnc && lex::contains(t, line.code, '(')) {
+  size_t next_switch = 0;
+  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
+    // Most lines have no '(': that is read from the line's record, without decoding the line.
+    if (pf.lines.kind(li) == LineKind::Commands && !cnc && lex::contains(t, pf.lines.code(li), '(')) {
+      const Line& line = pf.lines[li];
       std::vector<Span> groups;
       lex::for_each_plain(t, line.code, [&](uint32_t k) {
         if (t[k] != '(' || in_raw_text(pf, line, k)) return true;
@@ -95,10 +103,8 @@ void check(const FileContext& cx, Sink& out) {
         }
       }
     }
-    for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
-      const Command& c = pf.commands[i];
-      if (sets_mode(c)) cnc = c.number == 453;
-    }
+    for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line == li; ++next_switch)
+      cnc = pf.commands[switches[next_switch]].number == 453;
   }
 }
 

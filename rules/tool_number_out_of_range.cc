@@ -42,7 +42,8 @@ M563 P0 D0 S"Hotend"
 void check(const FileContext& cx, Sink& out) {
   if (cx.target.version < Version(3, 1, 0, 0, 0)) return;
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
+  for (const uint32_t ci : pf.with_code('M', 563)) {
+    const Command& c = pf.commands[ci];
     if (!c.is('M', 563)) continue;
     auto P = get_int(pf, c, 'P');
     if (!P.known() || P.value < 50) continue;

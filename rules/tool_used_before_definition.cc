@@ -57,7 +57,8 @@ T0 P0
 bool created_anywhere(const Machine& m, int n) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
-    for (const Command& c : pf.commands) {
+    for (const uint32_t ci : pf.with_code('M', 563)) {
+      const Command& c = pf.commands[ci];
       if (!c.is('M', 563)) continue;
       auto P = get_int(pf, c, 'P');
       if (!P.known() || P.value == n) return true;

@@ -138,13 +138,14 @@ bool needs_quotes(const Target& target, int number) {
 
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
-    if (c.letter != 'M' || c.fraction >= 0) continue;
-    for (const StringParam& sp : kStringParams) {
-      if (sp.number != c.number || cx.target.version < Version(3, 0, 0, 0, 0)) continue;
-      const bool quotes_needed = needs_quotes(cx.target, sp.number);
-      // A blank before the quote of an M98 file name breaks every version; other checks need the target.
-      if (!quotes_needed && sp.number != 98) continue;
+  if (cx.target.version < Version(3, 0, 0, 0, 0)) return;
+  for (const StringParam& sp : kStringParams) {
+    const bool quotes_needed = needs_quotes(cx.target, sp.number);
+    // A blank before the quote of an M98 file name breaks every version; other checks need the target.
+    if (!quotes_needed && sp.number != 98) continue;
+    for (const uint32_t i : pf.with_code('M', sp.number)) {
+      const Command& c = pf.commands[i];
+      if (c.fraction >= 0) continue;
       // RRF reads the first occurrence of the letter (Seen()).
       if (ParamRef p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, quotes_needed, out);
     }

@@ -566,3 +566,32 @@ TEST_CASE("source: the line index finds every line start, whatever the alignment
     CHECK(f.endings().lf == starts.size() - 1);
   }
 }
+
+TEST_CASE("parser: commands by code", "[parser]") {
+  for (unsigned threads : {1u, 3u}) {
+    INFO("threads " << threads);
+    Parsed p = parse_text("M563 P0\nG1 X1\nT0\nM563.1 P1 G1 Y2\nT{1}\nM1024\nG1 X80E4\n",
+                          ParseOptions{.threads = threads, .part_bytes = 4});
+    auto list = [&](char l, int n) {
+      std::vector<uint32_t> v;
+      for (uint32_t i : p.pf.with_code(l, n)) v.push_back(i);
+      return v;
+    };
+    CHECK(list('M', 563) == std::vector<uint32_t>{0, 3});
+    CHECK(list('G', 1) == std::vector<uint32_t>{1, 4, 7});
+    CHECK(list('T', 5) == std::vector<uint32_t>{2, 5});  // every T, whatever the number
+    CHECK(list('M', 1024).empty());  // beyond the index: not listed
+    CHECK(p.pf.with_code('G', 10).empty());
+    CHECK(p.pf.codes() == std::vector<std::pair<char, int32_t>>{{'G', 1}, {'M', 563}, {'T', -1}});
+    CHECK(p.pf.any_exponent);
+    CHECK_FALSE(p.pf.any_blank_before_colon);
+    CHECK_FALSE(p.pf.any_repeated_letter);
+    CHECK_FALSE(p.pf.any_line_number);
+    CHECK_FALSE(p.pf.any_tab_indent);
+  }
+  Parsed q = parse_text("N1 G1 X1\nif true\n\tG1 X1 X2\n  ; a tab-indented comment is blank\n");
+  CHECK(q.pf.any_line_number);
+  CHECK(q.pf.any_tab_indent);
+  CHECK(q.pf.any_repeated_letter);
+  CHECK_FALSE(parse_text("if true\n\t; only a comment\n").pf.any_tab_indent);
+}
