@@ -37,7 +37,10 @@ constexpr MetaWord kMetaWords[] = {
 struct ByteClasses {
   bool value_stop[256] = {};  // '"', '{', '(', letters, '\'', ':'
   bool code_stop[256] = {};   // '"', '{', '}', ';', '*', '('
+  bool number[256] = {};      // digits, '.', '-', '+'
   constexpr ByteClasses() {
+    for (int c = '0'; c <= '9'; ++c) number[c] = true;
+    for (unsigned char c : {'.', '-', '+'}) number[c] = true;
     for (int c = 'A'; c <= 'Z'; ++c) value_stop[c] = value_stop[c + 32] = true;
     for (unsigned char c : {'"', '{', '(', '\'', ':'}) value_stop[c] = true;
     for (unsigned char c : {'"', '{', '}', ';', '*', '('}) code_stop[c] = true;
@@ -110,7 +113,7 @@ struct Lexer {
   bool cnc = false;
   ParsedFile* out = nullptr;  // null: quiet (re-lexing a command that was parsed before)
 
-  void error(uint32_t b, uint32_t e, std::string msg) const {
+  [[gnu::noinline, gnu::cold]] void error(uint32_t b, uint32_t e, std::string msg) const {
     if (out) out->errors.push_back({Span{b, e}, std::move(msg)});
   }
   uint32_t skip_blanks(uint32_t p, uint32_t e) const {
@@ -127,7 +130,7 @@ struct Lexer {
   }
   // Skips a quoted string starting at `p` (on the opening quote). Returns the position after it, or `e` and
   // records an error when the string is not closed.
-  uint32_t skip_string(uint32_t p, uint32_t e) const {
+  [[gnu::noinline]] uint32_t skip_string(uint32_t p, uint32_t e) const {
     const uint32_t start = p++;
     while (p < e) {
       const char c = t[p];
@@ -155,7 +158,7 @@ struct Lexer {
     return false;
   }
   // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole.
-  uint32_t skip_braces(uint32_t p, uint32_t e) const {
+  [[gnu::noinline]] uint32_t skip_braces(uint32_t p, uint32_t e) const {
     const uint32_t start = p;
     int depth = 0;
     while (p < e) {
@@ -189,6 +192,22 @@ uint32_t Lexer::parse_value(uint32_t p, uint32_t e, Param& param) const {
   const auto n = static_cast<uint32_t>(t.size());
   const uint32_t vb = skip_blanks(p, e);
   uint32_t q = vb;
+  // Fast path, most values: a plain number ("10", "-0.5") ending at blanks, the next letter or the end. What the
+  // loop below would decide differently (an exponent E, a list, a string …) takes the loop.
+  while (q < e && kBytes.number[static_cast<unsigned char>(s[q])]) ++q;
+  if (q > vb) {
+    uint32_t r = q;
+    while (r < e && is_blank(s[r])) ++r;
+    const bool ends = r == e || (is_alpha(s[r]) && !(r == q && (s[r] == 'E' || s[r] == 'e') && is_digit(s[r - 1]))) ||
+                      (s[r] == '\'' && r + 1 < e && is_alpha(s[r + 1])) || (cnc && s[r] == '(');
+    if (ends) {
+      param.value = Span{vb, q};
+      param.has_expr = param.exponent_letter = param.blank_before_colon = false;
+      param.kind = ValueKind::Number;
+      return r;
+    }
+  }
+  q = vb;
   bool colon = false, has_expr = false, exponent = false, blank_colon = false;
   for (;;) {
     q = next_value_stop(s, n, q, e);
@@ -816,19 +835,30 @@ ParamRange::iterator& ParamRange::iterator::operator++() {
 
 ParamRef ParsedFile::find(const Command& c, char letter) const {
   // The model and the rules ask one command for several letters in a row (M584 asks for every axis letter):
-  // the parameters of the last command asked about are kept, per thread.
+  // the parameters of the last command asked about are kept, per thread. They are lexed only as far as the
+  // letters asked for need: RRF takes the first parameter with a letter, so a find stops at it.
   thread_local struct {
     uint64_t serial = 0;  // ParsedFile::serial: unique per parse, so a new parse never meets a stale entry
     Span span;
-    std::vector<Param> params;
+    std::vector<Param> params;  // lexed so far
+    ParamRange::iterator next;  // where lexing goes on
   } last;
   if (last.serial != serial || last.span != c.span || serial == 0) {
-    last.params.assign(params(c).begin(), params(c).end());
+    last.params.clear();
+    last.next = params(c).begin();
     last.serial = serial;
     last.span = c.span;
+  } else {
+    for (const Param& p : last.params)
+      if (p.letter == letter) return ParamRef(p);
   }
-  for (const Param& p : last.params)
-    if (p.letter == letter) return ParamRef(p);
+  for (; last.next != ParamRange::iterator(); ++last.next) {
+    last.params.push_back(*last.next);
+    if (last.params.back().letter == letter) {
+      ++last.next;
+      return ParamRef(last.params.back());
+    }
+  }
   return ParamRef();
 }
 
