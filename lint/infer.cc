@@ -1,6 +1,7 @@
 #include "infer.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <fmt/format.h>
 
 #include "values.h"
@@ -113,31 +114,51 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
     const FileUnit& u = m.unit(i);
     const ParsedFile& pf = u.parsed;
     const FileId f = u.source->id();
-    for (const Line& line : pf.lines) {
-      if (line.kind != LineKind::Meta) continue;
+    for (uint32_t li = 0; li < pf.lines.size() && !(vars && meta && arrays); ++li) {
+      if (pf.lines.kind(li) != LineKind::Meta) continue;  // read from the record: most lines are not
+      const Line& line = pf.lines[li];
       if (!vars && (line.meta == MetaKind::Var || line.meta == MetaKind::Global || line.meta == MetaKind::Set))
         vars = Evidence{Evidence::Kind::Floor, Version(3, 3, 0), fmt::format("'{}' variables need RRF 3.3 or later", meta_keyword(line.meta)), {f, line.code}};
       if (!meta) meta = Evidence{Evidence::Kind::Floor, Version(3, 1, 0, 0, 0), "meta commands need RRF 3.01 or later", {f, line.code}};
       if (!arrays && has_array_literal(pf.text(line.meta_arg)))
         arrays = Evidence{Evidence::Kind::Floor, Version(3, 5, 0, 0, 0), "array expressions need RRF 3.5 or later", {f, line.meta_arg}};
     }
-    for (const Command& c : pf.commands) {
-      if (c.letter != 'M' || c.fraction >= 0) continue;
-      Location loc{f, c.span};
-      if (c.number == 305 && !m305) m305 = Evidence{Evidence::Kind::Ceiling, Version(2, 5, 1), "M305 configures heaters the RRF 2 way", loc};
-      if ((c.number == 950 || c.number == 308) && !m950)
-        m950 = Evidence{Evidence::Kind::Floor, Version(3, 0, 0), fmt::format("M{} needs RRF 3.0 or later", c.number), loc};
-      if (c.number == 584 && pf.find(c, 'E')) any_m584_e = true;
-      if (!extruder_use) {
-        if (c.number == 563) {
-          auto d = get_int_list(pf, c, 'D');
-          if (d.known() && !d.value.empty() && d.value.front() >= 0)
-            extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), "tools use extruders but no M584 E creates any (RRF 3.3+ has no default extruder)", loc};
-        } else if (c.number == 92 || c.number == 906 || c.number == 350 || c.number == 203 || c.number == 201 || c.number == 566) {
-          if (ParamRef p = pf.find(c, 'E'); p && (p->kind == ValueKind::Number || p->kind == ValueKind::List))
-            extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), fmt::format("M{} sets E values but no M584 E creates an extruder (RRF 3.3+ has no default extruder)", c.number), loc};
+    // The first command of these codes (no fraction) for which `pred` holds, in file order; UINT32_MAX if none.
+    auto first_of = [&](std::initializer_list<int> numbers, auto pred) {
+      uint32_t best = UINT32_MAX;
+      for (int n : numbers)
+        for (const uint32_t ci : pf.with_code('M', n)) {
+          if (ci >= best) break;
+          const Command& c = pf.commands[ci];
+          if (c.fraction < 0 && pred(c)) {
+            best = ci;
+            break;
+          }
         }
-      }
+      return best;
+    };
+    auto any = [](const Command&) { return true; };
+    if (!m305)
+      if (const uint32_t ci = first_of({305}, any); ci != UINT32_MAX)
+        m305 = Evidence{Evidence::Kind::Ceiling, Version(2, 5, 1), "M305 configures heaters the RRF 2 way", {f, pf.commands[ci].span}};
+    if (!m950)
+      if (const uint32_t ci = first_of({950, 308}, any); ci != UINT32_MAX)
+        m950 = Evidence{Evidence::Kind::Floor, Version(3, 0, 0), fmt::format("M{} needs RRF 3.0 or later", pf.commands[ci].number),
+                        {f, pf.commands[ci].span}};
+    if (first_of({584}, [&](const Command& c) { return bool(pf.find(c, 'E')); }) != UINT32_MAX) any_m584_e = true;
+    if (!extruder_use) {
+      const uint32_t d = first_of({563}, [&](const Command& c) {
+        auto dl = get_int_list(pf, c, 'D');
+        return dl.known() && !dl.value.empty() && dl.value.front() >= 0;
+      });
+      const uint32_t e = first_of({92, 906, 350, 203, 201, 566}, [&](const Command& c) {
+        ParamRef p = pf.find(c, 'E');
+        return p && (p->kind == ValueKind::Number || p->kind == ValueKind::List);
+      });
+      if (d != UINT32_MAX && d < e)
+        extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), "tools use extruders but no M584 E creates any (RRF 3.3+ has no default extruder)", {f, pf.commands[d].span}};
+      else if (e != UINT32_MAX)
+        extruder_use = Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2), fmt::format("M{} sets E values but no M584 E creates an extruder (RRF 3.3+ has no default extruder)", pf.commands[e].number), {f, pf.commands[e].span}};
     }
   }
   for (auto* e : {&m305, &m950, &meta, &vars, &arrays})

@@ -272,6 +272,7 @@ class LineTable {
   /// Line i's kind and code, without decoding the line (a rule skips most lines on these).
   LineKind kind(size_t i) const { return static_cast<LineKind>(recs_[i].kind_meta & 7); }
   Span code(size_t i) const { return Span{recs_[i].code_begin, recs_[i].code_end}; }
+  bool has_comment(size_t i) const { return recs_[i].kind_meta & 0x80; }
   size_t size() const { return recs_.size(); }
   bool empty() const { return recs_.empty(); }
   DecodingIterator<LineTable, Line> begin() const { return {this, 0}; }

@@ -184,9 +184,9 @@ std::vector<Directive> parse_directives(const ParsedFile& pf) {
   std::vector<Directive> out;
   const SourceFile& f = *pf.source;
   if (f.line_count() == 0) return out;
-  for (const Line& line : pf.lines) {
-    if (line.comment.empty()) continue;
-    if (auto d = parse_comment(pf, line)) out.push_back(std::move(*d));
+  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
+    if (!pf.lines.has_comment(li)) continue;  // from the line's record: most lines have none
+    if (auto d = parse_comment(pf, pf.lines[li])) out.push_back(std::move(*d));
   }
   if (out.empty()) return out;
   const std::vector<bool> has_code = code_lines(pf);
