@@ -95,7 +95,8 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   for (uint32_t li = 0; li < pf.lines.size(); ++li) {
-    if (!lex::contains(t, pf.lines.code(li), '"')) continue;  // no string on this line (read without decoding it)
+    // No string, or no apostrophe, on this line: read from its record, without decoding the line.
+    if (!lex::contains(t, pf.lines.code(li), '\'') || !lex::contains(t, pf.lines.code(li), '"')) continue;
     const Line& line = pf.lines[li];
     if (line.kind == LineKind::Meta) {
       scan(cx, line.code, out);

@@ -81,34 +81,39 @@ size_t fraction_dot(std::string_view item) {
 
 void check_command(const FileContext& cx, const Command& c, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  {
-    const std::string_view letters = int_params(c);
-    for (char letter : letters) {
-      ParamRef p = pf.find(c, letter);  // RRF reads the first one
-      if (!p || is_unknown_value(*p) || (p->kind != ValueKind::Number && p->kind != ValueKind::List)) continue;
-      if (!lex::contains(pf.source->text(), p->value, '.')) continue;  // the usual case: no fraction anywhere
-      const std::vector<Span> items = list_items(pf, *p);
-      for (size_t i = 0; i < items.size(); ++i) {
-        const std::string_view item = pf.text(items[i]);
-        const size_t dot = fraction_dot(item);
-        if (dot == std::string_view::npos) continue;
-        std::string kept(item.substr(0, dot));
-        if (kept.find_first_of("0123456789") == std::string::npos) kept = "0";
-        if (items.size() == 1) {
-          out.report(kMeta, cx.at(items[i]),
-                     fmt::format("'{}{}' in '{}': RRF reads {} as a whole number, uses {} and drops the fraction "
-                                 "silently",
-                                 letter, item, lex::word(pf, c), letter, kept));
-        } else {
-          const Span rest{items[i].begin + static_cast<uint32_t>(dot), p->value.end};
-          out.report(kMeta, cx.at(items[i]),
-                     fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
-                                 "list at the '.', so '{}' is ignored",
-                                 item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept,
-                                 lex::clip(pf.text(rest))));
-        }
-        break;  // RRF stops reading the parameter at the first '.'
+  const std::string_view letters = int_params(c);
+  // The usual case: no '.' anywhere in the command, so no fraction (read without lexing the parameters).
+  if (letters.empty() || !lex::contains(pf.source->text(), c.span, '.')) return;
+  uint32_t seen = 0;  // the letters met so far: RRF reads the first parameter with a letter
+  for (auto it = pf.params(c).begin(); it != ParamRange::iterator(); ++it) {
+    const Param* p = &*it;
+    const char letter = p->letter;
+    if (letter < 'A' || letter > 'Z' || (seen & (1u << (letter - 'A')))) continue;
+    seen |= 1u << (letter - 'A');
+    if (letters.find(letter) == std::string_view::npos) continue;
+    if (is_unknown_value(*p) || (p->kind != ValueKind::Number && p->kind != ValueKind::List)) continue;
+    if (!lex::contains(pf.source->text(), p->value, '.')) continue;
+    const std::vector<Span> items = list_items(pf, *p);
+    for (size_t i = 0; i < items.size(); ++i) {
+      const std::string_view item = pf.text(items[i]);
+      const size_t dot = fraction_dot(item);
+      if (dot == std::string_view::npos) continue;
+      std::string kept(item.substr(0, dot));
+      if (kept.find_first_of("0123456789") == std::string::npos) kept = "0";
+      if (items.size() == 1) {
+        out.report(kMeta, cx.at(items[i]),
+                   fmt::format("'{}{}' in '{}': RRF reads {} as a whole number, uses {} and drops the fraction "
+                               "silently",
+                               letter, item, lex::word(pf, c), letter, kept));
+      } else {
+        const Span rest{items[i].begin + static_cast<uint32_t>(dot), p->value.end};
+        out.report(kMeta, cx.at(items[i]),
+                   fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
+                               "list at the '.', so '{}' is ignored",
+                               item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept,
+                               lex::clip(pf.text(rest))));
       }
+      break;  // RRF stops reading the parameter at the first '.'
     }
   }
 }

@@ -80,7 +80,7 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   if (p.letter == 0) return;
   const uint32_t after = p.span.begin + 1;  // right after the letter
   // The line's code, not the command: RRF would also end the command at the 'm' of an unquoted "thermistor".
-  const uint32_t end = pf.line_of(c).code.end;
+  const uint32_t end = pf.lines.code(c.line).end;
   if (after >= end) return;  // no value at all: a different mistake
   const char letter = sp.letter;
   uint32_t b = after;
