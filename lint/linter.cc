@@ -203,11 +203,19 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
     FileContext fc{m, m.unit(file_tasks[k].first), res.target, options};
     file_tasks[k].second->check_file(fc, out);
   };
-  if (options.threads > 1 && bytes >= 2 * options.part_bytes) {
+  std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
+  const bool parallel = options.threads > 1 && bytes >= 2 * options.part_bytes;
+  if (parallel) {
     std::vector<Sink> sinks(file_tasks.size());
     Sink node_sink;
-    run_tasks(file_tasks.size(), options.threads, [&] { forward_pass(node_sink); },
-              [&](size_t k) { file_task(k, sinks[k]); });
+    if (options.inline_suppressions) directives.resize(m.unit_count());
+    // The tasks: every (file, rule), then the suppression comments of every file.
+    run_tasks(file_tasks.size() + directives.size(), options.threads, [&] { forward_pass(node_sink); },
+              [&](size_t k) {
+                if (k < file_tasks.size()) return file_task(k, sinks[k]);
+                const auto unit = static_cast<uint32_t>(k - file_tasks.size());
+                directives[unit] = parse_directives(m.unit(unit).parsed);
+              });
     for (Sink& part : sinks)
       for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
     for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
@@ -240,7 +248,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
                         }),
             out.end());
   // 7. Per-file ignores and suppression comments (lint/suppress.cc), which add RRF900/RRF901.
-  apply_suppressions(res, rules, options);
+  apply_suppressions(res, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
   return res;
 }
 

@@ -1014,8 +1014,8 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     LineParser lp(pf, opts.cnc_mode);
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
-  compute_blocks(pf);
-  index_codes(pf);
+  // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
+  run_tasks(2, parts > 1 ? 2 : 1, [&](size_t k) { k == 0 ? compute_blocks(pf) : index_codes(pf); });
   return pf;
 }
 

@@ -242,7 +242,8 @@ std::vector<Directive> parse_directives(const ParsedFile& pf) {
   return out;
 }
 
-void apply_suppressions(MachineResult& res, const std::vector<const Rule*>& enabled, const LintOptions& options) {
+void apply_suppressions(MachineResult& res, const std::vector<const Rule*>& enabled, const LintOptions& options,
+                        std::vector<std::vector<Directive>>* directives) {
   Machine& m = *res.machine;
   std::map<FileId, const FileUnit*> units;
   for (uint32_t i = 0; i < m.unit_count(); ++i) units[m.unit(i).source->id()] = &m.unit(i);
@@ -264,7 +265,7 @@ void apply_suppressions(MachineResult& res, const std::vector<const Rule*>& enab
   for (const auto& [id, u] : units) {
     FileDirectives fd;
     fd.unit = u;
-    fd.directives = parse_directives(u->parsed);
+    fd.directives = directives ? std::move((*directives)[u->index]) : parse_directives(u->parsed);
     if (!fd.directives.empty()) files.emplace(id, std::move(fd));
   }
   if (files.empty()) return;

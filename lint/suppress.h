@@ -61,7 +61,10 @@ std::vector<Directive> parse_directives(const ParsedFile& pf);
 
 /// Removes suppressed diagnostics, drops those of rules switched off for their file (per-file ignores), and
 /// adds RRF900/RRF901 findings. `enabled` are the rules of this run. Called at the end of lint_machine.
-void apply_suppressions(MachineResult& res, const std::vector<const Rule*>& enabled, const LintOptions& options);
+/// `directives`, when given, holds parse_directives() of each unit of the machine, by unit index (worked out
+/// beforehand on other threads); otherwise they are parsed here.
+void apply_suppressions(MachineResult& res, const std::vector<const Rule*>& enabled, const LintOptions& options,
+                        std::vector<std::vector<Directive>>* directives = nullptr);
 
 /// The edits that add same-line suppressions to `pf`: `by_line` maps 0-based lines to rule names. Each is
 /// appended to its line (after any comment), or merged into a `disable=` directive already on that line. Lines
