@@ -1,6 +1,7 @@
 #include "parser.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstring>
 
@@ -933,7 +934,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
   };
-  run_tasks(parts, parts, run);
+  run_tasks(parts, std::min(parts, opts.threads), run);
   for (unsigned j = 1; j < parts; ++j) {
     if (ps[j].cnc_in != ps[j - 1].cnc_out) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
@@ -959,7 +960,8 @@ uint16_t code_key(char letter, int32_t number) {
 void index_codes(ParsedFile& pf) {
   const size_t n = pf.commands.size();
   pf.code_next_.resize(n);
-  std::vector<uint32_t> first(kNoKey + 1, CodeCommands::kEnd);
+  std::array<uint32_t, kNoKey + 1> first;
+  first.fill(CodeCommands::kEnd);
   bool exponent = false, blank_colon = false, repeated = false;
   for (size_t i = n; i-- > 0;) {
     const detail::CommandRec& r = pf.commands.rec(i);
@@ -1002,8 +1004,11 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   const std::string_view t = file.text();
   const bool any_nul = std::memchr(t.data(), '\0', t.size()) != nullptr;
   const bool any_del = std::memchr(t.data(), 0x7f, t.size()) != nullptr;
-  const size_t parts =
-      any_nul || opts.threads < 2 || opts.part_bytes == 0 ? 1 : std::min<size_t>(opts.threads, file.size() / opts.part_bytes);
+  // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up
+  // for by the others taking more parts.
+  const size_t parts = any_nul || opts.threads < 2 || opts.part_bytes == 0
+                           ? 1
+                           : std::min<size_t>(size_t{4} * opts.threads, file.size() / opts.part_bytes);
   if (parts > 1) {
     LineParser::parse_in_parts(pf, opts, static_cast<unsigned>(parts), any_del);
   } else {
@@ -1015,7 +1020,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
   // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
-  run_tasks(2, parts > 1 ? 2 : 1, [&](size_t k) { k == 0 ? compute_blocks(pf) : index_codes(pf); });
+  run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) { k == 0 ? compute_blocks(pf) : index_codes(pf); });
   return pf;
 }
 
