@@ -8,10 +8,30 @@
 #endif
 
 #include "memory.h"
+#include "parallel.h"
 
 namespace rrflint {
 
-SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes)
+namespace {
+
+// Appends the start of every line after an LF in [b, e) to `out`.
+void index_lf(const char* base, size_t b, size_t e, std::vector<uint32_t>& out) {
+  size_t i = b;
+#if defined(__SSE2__)
+  const __m128i nl = _mm_set1_epi8('\n');
+  for (; i + 16 <= e; i += 16) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + i));
+    for (auto mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, nl))); mask; mask &= mask - 1)
+      out.push_back(static_cast<uint32_t>(i + static_cast<unsigned>(__builtin_ctz(mask)) + 1));
+  }
+#endif
+  for (; i < e; ++i)
+    if (base[i] == '\n') out.push_back(static_cast<uint32_t>(i + 1));
+}
+
+}  // namespace
+
+SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes, unsigned threads)
     : id_(id), display_(std::move(display)), sd_path_(std::move(sd_path)), bytes_(std::move(bytes)) {
   const char* base = bytes_.data();
   const size_t n = bytes_.size();
@@ -19,18 +39,16 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, std:
   line_starts_.push_back(0);
   const bool any_cr = std::memchr(base, '\r', n) != nullptr;
   if (!any_cr) {
-    // Fast path: LF only, 16 bytes at a time (a memchr call per line costs more on ~30-byte lines).
-    size_t i = 0;
-#if defined(__SSE2__)
-    const __m128i nl = _mm_set1_epi8('\n');
-    for (; i + 16 <= n; i += 16) {
-      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + i));
-      for (auto mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, nl))); mask; mask &= mask - 1)
-        line_starts_.push_back(static_cast<uint32_t>(i + static_cast<unsigned>(__builtin_ctz(mask)) + 1));
-    }
-#endif
-    for (; i < n; ++i)
-      if (base[i] == '\n') line_starts_.push_back(static_cast<uint32_t>(i + 1));
+    // Fast path: LF only, 16 bytes at a time (a memchr call per line costs more on ~30-byte lines); a large file
+    // in parts on several threads, the later parts' starts appended in order.
+    const size_t parts = threads > 1 ? threads : 1;
+    std::vector<std::vector<uint32_t>> later(parts - 1);
+    run_tasks(parts, static_cast<unsigned>(parts), [&](size_t j) {
+      std::vector<uint32_t>& out = j == 0 ? line_starts_ : later[j - 1];
+      if (j > 0) reserve_huge(out, n / parts / 16 + 1);
+      index_lf(base, n * j / parts, n * (j + 1) / parts, out);
+    });
+    for (const std::vector<uint32_t>& v : later) line_starts_.insert(line_starts_.end(), v.begin(), v.end());
     endings_.lf = static_cast<uint32_t>(line_starts_.size() - 1);
   } else {
     for (size_t i = 0; i < n; ++i) {
@@ -106,9 +124,9 @@ FileId SourceManager::adopt(SourceManager& other) {
   return base;
 }
 
-const SourceFile& SourceManager::add(std::string display, std::string sd_path, std::string bytes) {
+const SourceFile& SourceManager::add(std::string display, std::string sd_path, std::string bytes, unsigned threads) {
   auto id = static_cast<FileId>(files_.size());
-  files_.push_back(std::make_unique<SourceFile>(id, std::move(display), std::move(sd_path), std::move(bytes)));
+  files_.push_back(std::make_unique<SourceFile>(id, std::move(display), std::move(sd_path), std::move(bytes), threads));
   return *files_.back();
 }
 

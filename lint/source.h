@@ -42,7 +42,8 @@ struct LineEndings {
 class SourceFile {
  public:
   /// `display` is the path shown to users; `sd_path` the path on the SD card ("/sys/config.g"), or empty.
-  SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes);
+  /// `threads` > 1 builds the line index of a large file in that many parts at once.
+  SourceFile(FileId id, std::string display, std::string sd_path, std::string bytes, unsigned threads = 1);
 
   FileId id() const { return id_; }
   void renumber(FileId id) { id_ = id; }  // SourceManager::adopt only
@@ -92,7 +93,7 @@ uint32_t count_code_points(std::string_view s);
 /// Owns every SourceFile of one run. FileIds index into it.
 class SourceManager {
  public:
-  const SourceFile& add(std::string display, std::string sd_path, std::string bytes);
+  const SourceFile& add(std::string display, std::string sd_path, std::string bytes, unsigned threads = 1);
   const SourceFile& get(FileId id) const { return *files_[id]; }
   size_t size() const { return files_.size(); }
   /// Moves every file of `other` to the end of this manager (the SourceFile objects stay where they are) and

@@ -560,10 +560,12 @@ TEST_CASE("source: the line index finds every line start, whatever the alignment
     std::vector<uint32_t> starts{0};
     for (size_t i = 0; i < text.size(); ++i)
       if (text[i] == '\n') starts.push_back(static_cast<uint32_t>(i + 1));
-    const SourceFile f(0, "t.g", "/sys/t.g", text);
-    REQUIRE(f.line_count() == starts.size());
-    for (uint32_t l = 0; l < starts.size(); ++l) CHECK(f.line_span(l).begin == starts[l]);
-    CHECK(f.endings().lf == starts.size() - 1);
+    for (unsigned threads : {1u, 2u, 3u, 7u}) {  // built in parts on several threads: the same index
+      const SourceFile f(0, "t.g", "/sys/t.g", text, threads);
+      REQUIRE(f.line_count() == starts.size());
+      for (uint32_t l = 0; l < starts.size(); ++l) CHECK(f.line_span(l).begin == starts[l]);
+      CHECK(f.endings().lf == starts.size() - 1);
+    }
   }
 }
 
