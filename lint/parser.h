@@ -1,11 +1,12 @@
 // The RRF line parser (rrf-semantics §1): bytes -> lines -> commands and parameters, all as spans.
 //
 // One pass per file, no allocation per token. What the pass keeps is small: a 20-byte record per line and per
-// command, decoded into the `Line` and `Command` values below when asked for. Parameters are not stored at all:
-// the pass lexes them once (to report errors and count them) and `ParsedFile::params` / `find` lex a command's
-// parameters again on demand, with the same code. The generated 100 MB benchmark file therefore costs about 1.2x its
-// size in line and command records (bench/RESULTS.md, P4). Parse errors are collected and parsing resumes at the next line, the way RRF
-// itself reports an error and carries on with the next line.
+// command, decoded into the `Line` and `Command` values below when asked for, and a 4-byte link per command to the
+// next of its code (`ParsedFile::with_code`). Parameters are not stored at all: the pass lexes them once (to report
+// errors and count them) and `ParsedFile::params` / `find` lex a command's parameters again on demand, with the
+// same code. The generated 100 MB benchmark file therefore costs about 1.3x its size in records (bench/RESULTS.md,
+// P4). A large file is parsed in parts on several threads (ParseOptions). Parse errors are collected and parsing
+// resumes at the next line, the way RRF itself reports an error and carries on with the next line.
 #pragma once
 
 #include <compare>
