@@ -3,15 +3,15 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <exception>
-#include <thread>
 #include <fstream>
 #include <iostream>
+#include <thread>
 #include <unordered_map>
 
 #include "cli.h"
+#include "lint/parallel.h"
 #include "lint/render/render.h"
 #include "lint/suppress.h"
 
@@ -37,10 +37,8 @@ bool job_settings(const Job& job, Settings& settings, unsigned threads, Effectiv
   return true;
 }
 
-// The threads of one run: --jobs, or the CPU count (at most 8).
-unsigned co_threads(const CheckOptions& co) {
-  return co.jobs > 0 ? co.jobs : std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-}
+// The threads of one run: --jobs, or the default.
+unsigned co_threads(const CheckOptions& co) { return co.jobs > 0 ? co.jobs : default_threads(); }
 
 // A machine linted ahead, on a worker thread, with its own SourceManager (run_job adopts its files).
 struct Prelinted {
@@ -61,22 +59,15 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
     if (!job_settings(jobs[i], settings, threads, out[i]->eff)) return {};  // run_job reports the error in order
     todo.push_back(i);
   }
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t k; (k = next++) < todo.size();) {
-      Prelinted& p = *out[todo[k]];
-      try {
-        JobReader reader(jobs[todo[k]]);
-        p.result = lint_machine(p.sources, reader, p.eff.lint);
-      } catch (...) {
-        p.error = std::current_exception();
-      }
+  run_tasks(todo.size(), threads, [&](size_t k) {
+    Prelinted& p = *out[todo[k]];
+    try {
+      JobReader reader(jobs[todo[k]]);
+      p.result = lint_machine(p.sources, reader, p.eff.lint);
+    } catch (...) {
+      p.error = std::current_exception();  // reported by run_job, in order
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned n = 1; n < threads && n < todo.size(); ++n) pool.emplace_back(work);
-  work();
-  for (std::thread& th : pool) th.join();
+  });
   return out;
 }
 
@@ -228,6 +219,8 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
 }
 
 }  // namespace
+
+unsigned default_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
 
 bool use_color(const std::string& mode, int fd) {
   if (mode == "always") return true;

@@ -188,6 +188,9 @@ struct CheckOptions {
   PlanOptions plan;
 };
 
+/// The threads a run uses without --jobs: the CPU count, at most 8.
+unsigned default_threads();
+
 int run_check(const CliOptions& cli, const CheckOptions& co);
 /// Colour for `--color MODE` on file descriptor `fd`: always/never, else FORCE_COLOR, NO_COLOR, TERM=dumb, a tty.
 bool use_color(const std::string& mode, int fd);

@@ -1,6 +1,5 @@
 // rrflint: the command-line front end. Argument parsing and dispatch only; the subcommands are in the other
 // files of cli/ (see cli.h) and the work is done by the core library (lint/).
-#include <thread>
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -177,7 +176,7 @@ int main(int argc, char** argv) {
       error(settings.config_error()->str());
       return kExitError;
     }
-    eff.lint.threads = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+    eff.lint.threads = default_threads();
     SourceManager sm;
     JobReader reader(job);
     MachineResult r = lint_machine(sm, reader, eff.lint);

@@ -965,8 +965,7 @@ void index_codes(ParsedFile& pf) {
   bool exponent = false, blank_colon = false, repeated = false;
   for (size_t i = n; i-- > 0;) {
     const detail::CommandRec& r = pf.commands.rec(i);
-    const unsigned l = r.bits & detail::kLetterMask;
-    const uint16_t key = code_key(l == 0 ? 'G' : l == 1 ? 'M' : 'T', r.number);
+    const uint16_t key = code_key(detail::letter_of(r.bits), r.number);
     pf.code_next_[i] = first[key];
     first[key] = static_cast<uint32_t>(i);
     exponent = exponent || (r.bits & detail::kAnyExponent);
@@ -982,17 +981,10 @@ void index_codes(ParsedFile& pf) {
 
 CodeCommands ParsedFile::with_code(char letter, int32_t number) const {
   const uint16_t key = code_key(letter, number);
+  if (key == kNoKey) return CodeCommands(code_next_.data(), CodeCommands::kEnd);
   auto it = std::lower_bound(code_first_.begin(), code_first_.end(), key,
                              [](const std::pair<uint16_t, uint32_t>& e, uint16_t k) { return e.first < k; });
-  if (key == kNoKey || it == code_first_.end() || it->first != key) return CodeCommands(code_next_.data(), CodeCommands::kEnd);
-  return CodeCommands(code_next_.data(), it->second);
-}
-
-std::vector<std::pair<char, int32_t>> ParsedFile::codes() const {
-  std::vector<std::pair<char, int32_t>> out;
-  for (const auto& [key, first] : code_first_)
-    out.emplace_back(key == kTKey ? 'T' : key >= 1024 ? 'M' : 'G', key == kTKey ? -1 : key % 1024);
-  return out;
+  return CodeCommands(code_next_.data(), it != code_first_.end() && it->first == key ? it->second : CodeCommands::kEnd);
 }
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {

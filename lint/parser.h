@@ -158,6 +158,12 @@ enum CommandBits : uint8_t {
   kAnyRepeat = 128,
 };
 
+/// The command letter stored in a CommandRec's bits.
+inline char letter_of(uint8_t bits) {
+  const unsigned l = bits & kLetterMask;
+  return l == 0 ? 'G' : l == 1 ? 'M' : 'T';
+}
+
 // The stored form of a line: 20 bytes. Spans, the comment and the meta-command parts are recovered on decoding.
 // Both records are trivial (no member initialisers): LineTable::put and CommandTable::add write every field, and a
 // table sized ahead of a parse in parts is not zeroed first (DefaultInit below).
@@ -394,8 +400,6 @@ struct ParsedFile {
   /// The commands with this letter and number (any fraction), in file order, as indices into `commands`. For
   /// 'T' every T command, whatever its number. Numbers outside 0…1023 have no list: filter `commands` for them.
   CodeCommands with_code(char letter, int32_t number) const;
-  /// Every code the file uses, as (letter, number) in G, M, T order; T appears once, as ('T', -1).
-  std::vector<std::pair<char, int32_t>> codes() const;
 
   std::string_view text(Span s) const { return source->slice(s); }
   /// The parameters of a command, in order.
@@ -417,8 +421,7 @@ RRFLINT_ALWAYS_INLINE inline Command CommandTable::operator[](size_t i) const {
   Command c;
   c.span = Span{r.begin, r.end};
   c.word = Span{r.begin, r.word_len < 255 ? r.begin + r.word_len : long_word_end(i)};
-  const unsigned l = r.bits & detail::kLetterMask;
-  c.letter = l == 0 ? 'G' : l == 1 ? 'M' : 'T';
+  c.letter = detail::letter_of(r.bits);
   c.number = r.number;
   c.fraction = r.fraction;
   c.number_expr = r.bits & detail::kNumberExpr;

@@ -59,17 +59,6 @@ constexpr IntParam kIntParams[] = {
     {'M', 116, "P"},
 };
 
-std::string_view int_params(const Command& c) {
-  if (c.fraction >= 0 || c.number < 0 || c.number >= 1024 || (c.letter != 'G' && c.letter != 'M')) return {};
-  // Indexed once by letter and number: every command of every file asks.
-  static const std::vector<std::string_view> index = [] {
-    std::vector<std::string_view> v(2 * 1024);
-    for (const IntParam& ip : kIntParams) v[(ip.letter == 'M') * 1024 + ip.number] = ip.params;
-    return v;
-  }();
-  return index[(c.letter == 'M') * 1024 + c.number];
-}
-
 // The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers.
 size_t fraction_dot(std::string_view item) {
   const size_t dot = item.find('.');
@@ -79,11 +68,12 @@ size_t fraction_dot(std::string_view item) {
   return std::string_view::npos;
 }
 
-void check_command(const FileContext& cx, const Command& c, Sink& out) {
+// Checks the integer parameters `letters` of `c`, a command of their code.
+void check_command(const FileContext& cx, const Command& c, std::string_view letters, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  const std::string_view letters = int_params(c);
-  // The usual case: no '.' anywhere in the command, so no fraction (read without lexing the parameters).
-  if (letters.empty() || !lex::contains(pf.source->text(), c.span, '.')) return;
+  // A fraction makes it another command. The usual case: no '.' anywhere in the command, so no fraction (read
+  // without lexing the parameters).
+  if (c.fraction >= 0 || !lex::contains(pf.source->text(), c.span, '.')) return;
   uint32_t seen = 0;  // the letters met so far: RRF reads the first parameter with a letter
   for (auto it = pf.params(c).begin(); it != ParamRange::iterator(); ++it) {
     const Param* p = &*it;
@@ -128,7 +118,7 @@ void check(const FileContext& cx, Sink& out) {
                              c.number));
   }
   for (const IntParam& ip : kIntParams)
-    for (const uint32_t i : pf.with_code(ip.letter, ip.number)) check_command(cx, pf.commands[i], out);
+    for (const uint32_t i : pf.with_code(ip.letter, ip.number)) check_command(cx, pf.commands[i], ip.params, out);
 }
 
 }  // namespace
