@@ -109,7 +109,7 @@ class NodeDispatch {
   }
   const std::vector<const Rule*>& rules_for(const Node& node, const Machine& m) const {
     if (!every_.empty() || node.kind != NodeKind::Command) return every_;
-    const Command& c = m.unit(node.unit).parsed.commands[node.index];
+    const CommandTable::Code c = m.unit(node.unit).parsed.commands.code(node.index);
     if (c.letter == 'T') return t_;
     const auto& table = c.letter == 'G' ? g_ : m_;
     if (c.number < 0 || c.number >= static_cast<int>(table.size())) return none_;

@@ -514,14 +514,13 @@ void ModelBuilder::step(MachineState& s, NodeId id) const {
 void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
   const Node& n = g_.nodes[id];
   const FileUnit& u = m_.unit(n.unit);
+  // Most commands change nothing here (moves, settings): their code is read from the record alone.
+  if (const CommandTable::Code code = u.parsed.commands.code(n.index);
+      code.fraction >= 0 || code.letter == 'T' || (code.letter == 'G' && code.number != 10))
+    return;
   const Command& c = u.parsed.commands[n.index];
   Cx x{s, u.parsed, c, id, exec_[id] == 1};
-  if (c.fraction >= 0) return;
-  if (c.letter == 'G') {
-    if (c.number == 10) do_g10(x);
-    return;
-  }
-  if (c.letter != 'M') return;
+  if (c.letter == 'G') return do_g10(x);
   switch (c.number) {
     case 584: do_m584(x); break;
     case 563: do_m563(x); break;

@@ -150,7 +150,7 @@ void check_d(const NodeContext& cx, Sink& out) {
   if (c.number == 572 && !pf.find(c, 'S')) return;  // without S, M572 only reports
   auto D = get_int_list(pf, c, 'D');
   if (!D.known() || D.value.empty()) return;
-  if (c.number != 572) D.value.resize(1);  // M591/M221 read one number
+  if (c.number != 572) D.value.erase(D.value.begin() + 1, D.value.end());  // M591/M221 read one number
   const int64_t bad = first_beyond(D.value, s.extruders);
   if (bad < 0) return;
   const std::string answer =

@@ -11,9 +11,15 @@ namespace rrflint::test {
 /// Why the parameters lexed on demand for `c` disagree with what the parse recorded; empty when they agree.
 inline std::string param_mismatch(const ParsedFile& pf, const Command& c) {
   uint32_t n = 0;
-  bool exponent = false, colon = false;
+  bool exponent = false, colon = false, repeated = false;
+  uint64_t seen = 0;  // a bit per letter: 'A'..'Z', then 'a'..'z' (an apostrophe axis)
   for (const Param& p : pf.params(c)) {
     ++n;
+    if (p.letter) {
+      const uint64_t bit = uint64_t{1} << (p.letter >= 'a' ? p.letter - 'a' + 26 : p.letter - 'A');
+      repeated = repeated || (seen & bit);
+      seen |= bit;
+    }
     exponent = exponent || p.exponent_letter;
     colon = colon || p.blank_before_colon;
     if (p.span.begin < c.span.begin || p.span.end > c.span.end) return "a parameter lies outside its command";
@@ -22,7 +28,49 @@ inline std::string param_mismatch(const ParsedFile& pf, const Command& c) {
     return "lexed " + std::to_string(n) + " parameters, the parse counted " + std::to_string(c.param_count);
   if (exponent != c.any_exponent) return "the exponent flag differs";
   if (colon != c.any_blank_before_colon) return "the blank-before-colon flag differs";
+  if (repeated != c.any_repeated_letter) return "the repeated-letter flag differs";
   return "";
+}
+
+
+/// Everything a parse recorded, as text: every line and command field, every parameter as lexed on demand, the
+/// errors, the cut expressions and the file flags. Two parses that must agree (in parts or not, with or without
+/// the short path for simple lines) must give the same text.
+inline std::string parse_dump(const ParsedFile& pf) {
+  std::string out;
+  auto num = [&](uint64_t v) { out += std::to_string(v); out += ' '; };
+  auto span = [&](Span s) { out += std::to_string(s.begin) + '-' + std::to_string(s.end) + ' '; };
+  for (const Line& l : pf.lines) {
+    out += "L ";
+    span(l.span), span(l.code), span(l.comment), span(l.meta_arg), span(l.meta_name);
+    num(l.indent), num(l.stored_length), num(l.first_command), num(l.command_count);
+    num(static_cast<unsigned>(l.kind)), num(static_cast<unsigned>(l.meta));
+    for (bool b : {l.indent_tabs, l.indent_spaces, l.line_number, l.checksum, l.conditional, l.in_loop, l.after_nul})
+      out += b ? '1' : '0';
+    out += '\n';
+  }
+  for (const Command& c : pf.commands) {
+    out += "C ";
+    span(c.span), span(c.word);
+    out += c.letter;
+    out += ' ';
+    num(static_cast<uint32_t>(c.number)), num(static_cast<uint8_t>(c.fraction)), num(c.line), num(c.param_count);
+    for (bool b : {c.number_expr, c.has_number, c.cnc, c.any_exponent, c.any_blank_before_colon, c.any_repeated_letter})
+      out += b ? '1' : '0';
+    for (const Param& p : pf.params(c)) {
+      out += " P";
+      out += p.letter ? p.letter : '_';
+      span(p.span), span(p.value), num(static_cast<unsigned>(p.kind));
+      for (bool b : {p.has_expr, p.exponent_letter, p.blank_before_colon}) out += b ? '1' : '0';
+    }
+    out += '\n';
+  }
+  for (const ParseError& e : pf.errors) out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
+  for (Span s : pf.semicolon_cuts) out += "S " + std::to_string(s.begin) + '-' + std::to_string(s.end) + '\n';
+  for (bool b : {pf.mixed_indentation, pf.any_exponent, pf.any_blank_before_colon, pf.any_repeated_letter,
+                 pf.any_line_number, pf.any_tab_indent})
+    out += b ? '1' : '0';
+  return out;
 }
 
 }  // namespace rrflint::test

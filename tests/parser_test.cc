@@ -437,6 +437,50 @@ TEST_CASE("parser: parameters lexed on demand are those the parse counted", "[pa
   CHECK(commands > 1000);
 }
 
+TEST_CASE("parser: the short path for simple lines records what the full lexer records", "[parser]") {
+  // Lines at the edges of what the short path takes (ParseOptions::fast_lines): exponents, a letter right after
+  // the word, lists with and without a blank before ':', G/M letters that start a new command, words without a
+  // number, commands that take the rest of the line, lowercase, tabs, indentation, 64- and 65-byte lines, mode
+  // switches, repeated letters and comments.
+  const std::vector<std::string> pieces = {
+      "G1 X10 Y20", "G1 X80E420", "G1E5 X1", "G59.3E1", "G1 X1e5Y2", "G1 X1 E-2 E3", "M92 X80:80 Y1:2", "M92 X80 :80",
+      "M584 X0.1:0.2 E:3", "G1 X1 M400 G4 S1", "G1 X1 g4 S1", "T-1", "T", "T0 P0", "T-", "G X1", "M", "G1.5.3 X1",
+      "G-1 X2", "M98 Pmacro.g", "M117 hello world", "M550 PPrinter 1", "M23 file.g", "m563 P0", "g1 X1",
+      "G1 X1 ; comment", "G1 X1;c", "G1 X1\t; tab", "\tG1 X1", "  G1 X1", "    M400 ; note", " ; indented comment",
+      "G1 X1.2.3", "G1 X+1 Y-.5", "G1 X1 X2", "G1 'a1", "G1 X'", "G1 X1 *5", "N1 G1 X1", "M453", "M451", "M452",
+      "G1 X1 (cnc) Y2", "M291 P\"a\"", "G1 X{1}", "G1 X1 }", "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L15",
+      "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L1", "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L",
+      "G1 X999999999999 Y-99999999999", "G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G",
+      "G1 X\xc3\xa9", "G1 X1 \x01", "if true", "  G1 X1 ; in a block", "else", "  M400", "", "G1 X1 ", "G1 X1  ",
+      "M92 X80:", "M92 X:1", "G1 X1E", "G1 XE1", "G1 X1 E", "G10 P0 X0 Y0 Z0 G10 P1"};
+  std::string text;
+  for (size_t i = 0; i < 3000; ++i) {
+    text += pieces[(i * 7 + i / 11) % pieces.size()];
+    if (i % 3 == 0) text += " " + pieces[(i / 3) % pieces.size()];  // two pieces on a line, as one
+    text += i % 9 == 0 ? "\r\n" : "\n";
+  }
+  for (const std::string& p : pieces) text += p + "\n";
+  text += pieces[0];  // the last line, with no terminator and no 64 bytes after it
+  for (ParseOptions o : {ParseOptions{}, ParseOptions{.cnc_mode = true}, ParseOptions{.threads = 3, .part_bytes = 500}}) {
+    const std::string fast = test::parse_dump(parse_text(text, o).pf);
+    o.fast_lines = false;
+    const std::string full = test::parse_dump(parse_text(text, o).pf);
+    CHECK(fast == full);
+    CHECK(fast.find(" P") != std::string::npos);
+  }
+  // And every fixture.
+  size_t files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(RRFLINT_SOURCE_DIR) / "fixtures"))
+    if (e.is_regular_file() && e.path().extension() == ".g") {
+      std::ifstream in(e.path(), std::ios::binary);
+      const std::string t{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      INFO(e.path().string());
+      CHECK(test::parse_dump(parse_text(t).pf) == test::parse_dump(parse_text(t, ParseOptions{.fast_lines = false}).pf));
+      ++files;
+    }
+  CHECK(files > 100);
+}
+
 TEST_CASE("parser: records that overflow their compact fields decode exactly", "[parser]") {
   // A 20-byte record saturates a few counters; the exact values live in side tables. Exercise each one.
   std::string many_commands;

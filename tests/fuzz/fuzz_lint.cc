@@ -7,7 +7,8 @@
 // Input layout: byte 0 picks the firmware target and board; the rest is split at the first 0xFF byte into
 // /sys/config.g and /sys/m.g (so `M98 P"m.g"` in the first part reaches the second). Without 0xFF the whole
 // rest is config.g. The seeds in tests/fuzz/corpus/ are small hand-written configs. Each input is linted a
-// second time on three threads (files parsed in parts), which must report the same.
+// second time on three threads (files parsed in parts), which must report the same, and each file is parsed
+// again without the short path for simple lines, which must record the same.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
@@ -56,6 +57,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (!test::param_mismatch(pf, c).empty()) __builtin_trap();
     for (const Line& l : pf.lines)
       if (l.code.end > l.span.end || l.comment.end > l.span.end || l.span.end > pf.source->size()) __builtin_trap();
+    // The short path for simple lines records what the full lexer records.
+    if (test::parse_dump(pf) != test::parse_dump(parse(*pf.source, ParseOptions{.fast_lines = false}))) __builtin_trap();
   }
 
   std::ostringstream sink;
