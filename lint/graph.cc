@@ -152,9 +152,13 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   const ParsedFile& pf = u.parsed;
   for (uint32_t ci = 0; ci < pf.commands.size(); ++ci) {
     if (full()) break;
-    const Command& c = pf.commands[ci];
-    const bool m = maybe || pf.lines.in_block(c.line);
+    const CommandTable::Code code = pf.commands.code(ci);
+    const bool m = maybe || pf.lines.in_block(code.line);
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode});
+    if (code.fraction >= 0 || (code.letter != 'T' && !(code.letter == 'M' && (code.number == 98 || code.number == 501 ||
+                                                                             code.number == 505))))
+      continue;  // most commands: read from the record alone
+    const Command& c = pf.commands[ci];
     if (c.letter == 'M' && c.fraction < 0) {
       if (c.number == 98) {
         // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.

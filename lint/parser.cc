@@ -42,7 +42,11 @@ struct ByteClasses {
   // For the parse-time parameter scan (LineParser::count_params): what a byte can do to a parameter list.
   enum : uint8_t { kPlain, kBlank, kLetter, kQuote, kBrace, kColon, kParen, kApostrophe };
   uint8_t param[256] = {};
+  bool rich[256] = {};        // not a letter, digit, blank, '.', '-', '+' or ':' (ParsedFile::rich_lines)
   constexpr ByteClasses() {
+    for (int c = 0; c < 256; ++c)
+      rich[c] = !((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == ' ' || c == '\t' ||
+                  c == '.' || c == '-' || c == '+' || c == ':');
     param[static_cast<unsigned char>(' ')] = param[static_cast<unsigned char>('\t')] = kBlank;
     for (int c = 'A'; c <= 'Z'; ++c) param[c] = param[c + 32] = kLetter;
     param[static_cast<unsigned char>('"')] = kQuote;
@@ -109,6 +113,21 @@ RRFLINT_ALWAYS_INLINE inline uint32_t next_code_stop(const char* s, uint32_t n, 
   });
 #else
   return find_class(s, n, p, e, kBytes.code_stop, 0);
+#endif
+}
+
+// Does [p, e) hold a byte of kBytes.rich?
+RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p, uint32_t e) {
+#if defined(__SSE2__)
+  return find_class(s, n, p, e, kBytes.rich, [](__m128i v) {
+    const __m128i d = _mm_cmplt_epi8(_mm_xor_si128(_mm_sub_epi8(v, _mm_set1_epi8('0')), _mm_set1_epi8(static_cast<char>(0x80))),
+                                     _mm_set1_epi8(static_cast<char>(0x80 + 10)));
+    const __m128i plain = _mm_or_si128(_mm_or_si128(_mm_or_si128(letters(v), d), any_of(v, ' ', '\t')),
+                                       _mm_or_si128(any_of(v, '.', '-'), any_of(v, '+', ':')));
+    return _mm_xor_si128(plain, _mm_set1_epi8(-1));
+  }) < e;
+#else
+  return find_class(s, n, p, e, kBytes.rich, 0) < e;
 #endif
 }
 
@@ -434,6 +453,8 @@ class LineParser {
   void lex_params(Command& cmd, uint32_t& p, uint32_t e);
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
   void add_line(const Line& line, bool cut_by_del) {
+    if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end))
+      out_.rich_lines.push_back(next_line_);
     detail::LineRec* r;
     if (in_place_) {
       r = &in_place_[next_line_];
@@ -1153,6 +1174,7 @@ void LineParser::join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, ui
   pf.commands.append(std::move(part.commands));
   pf.errors.insert(pf.errors.end(), std::make_move_iterator(part.errors.begin()), std::make_move_iterator(part.errors.end()));
   pf.semicolon_cuts.insert(pf.semicolon_cuts.end(), part.semicolon_cuts.begin(), part.semicolon_cuts.end());
+  pf.rich_lines.insert(pf.rich_lines.end(), part.rich_lines.begin(), part.rich_lines.end());
 }
 
 // A file without NUL bytes has one logical line per editor line, so each part writes its line records in place.

@@ -251,16 +251,17 @@ class CommandTable {
   bool empty() const { return size() == 0; }
   DecodingIterator<CommandTable, Command> begin() const { return {this, 0}; }
   DecodingIterator<CommandTable, Command> end() const { return {this, size()}; }
-  /// Command i's letter, number and fraction, read from its record without decoding the command (the forward
-  /// pass asks every command for its code and acts on few).
+  /// Command i's letter, number, fraction and line, read from its record without decoding the command (the graph
+  /// and the forward pass ask every command for its code and act on few).
   struct Code {
     char letter;
     int32_t number;
     int8_t fraction;
+    uint32_t line;
   };
   Code code(size_t i) const {
     const detail::CommandRec& r = rec(i);
-    return Code{detail::letter_of(r.bits), r.number, r.fraction};
+    return Code{detail::letter_of(r.bits), r.number, r.fraction, r.line};
   }
 
  private:
@@ -405,6 +406,9 @@ struct ParsedFile {
   /// Expressions cut short by a ';' (RRF113 reports them, not syntax-error): from the '{' (or the start of a
   /// meta-command expression) to the end of the code; the ';' follows after optional blanks.
   std::vector<Span> semicolon_cuts;
+  /// The lines whose code holds a byte other than a letter, digit, blank, '.', '-', '+' or ':' (a quote, a brace,
+  /// a parenthesis, an apostrophe …), in order. A rule that looks for such a byte walks these lines only.
+  std::vector<uint32_t> rich_lines;
   bool mixed_indentation = false;
   // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
   bool any_exponent = false;

@@ -94,7 +94,7 @@ void scan(const FileContext& cx, Span s, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
+  for (const uint32_t li : pf.rich_lines) {  // only these can hold a quote
     // No string, or no apostrophe, on this line: read from its record, without decoding the line.
     if (!lex::contains(t, pf.lines.code(li), '\'') || !lex::contains(t, pf.lines.code(li), '"')) continue;
     const Line& line = pf.lines[li];

@@ -75,8 +75,10 @@ void check(const FileContext& cx, Sink& out) {
   if (switches.empty() && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
   size_t next_switch = 0;
-  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
-    // Most lines have no '(': that is read from the line's record, without decoding the line.
+  for (const uint32_t li : pf.rich_lines) {  // only these can hold a '('
+    // The mode switches of earlier lines (a switch applies from the next line).
+    for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line < li; ++next_switch)
+      cnc = pf.commands[switches[next_switch]].number == 453;
     if (pf.lines.kind(li) == LineKind::Commands && !cnc && lex::contains(t, pf.lines.code(li), '(')) {
       const Line& line = pf.lines[li];
       std::vector<Span> groups;
@@ -103,8 +105,6 @@ void check(const FileContext& cx, Sink& out) {
         }
       }
     }
-    for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line == li; ++next_switch)
-      cnc = pf.commands[switches[next_switch]].number == 453;
   }
 }
 

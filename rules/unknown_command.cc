@@ -82,9 +82,11 @@ bool implemented(char letter, int number, int fraction, int vi) {
 void check(const FileContext& cx, Sink& out) {
   const int vi = version_index(cx.target.version);
   const ParsedFile& pf = cx.parsed();
-  for (const Command& c : pf.commands) {
-    if (c.letter == 'T' || c.number < 0) continue;
-    if (implemented(c.letter, c.number, c.fraction, vi)) continue;
+  for (size_t i = 0; i < pf.commands.size(); ++i) {
+    const CommandTable::Code k = pf.commands.code(i);  // from the record: most commands stop here
+    if (k.letter == 'T' || k.number < 0) continue;
+    if (implemented(k.letter, k.number, k.fraction, vi)) continue;
+    const Command& c = pf.commands[i];
     // Before 3.4 a fraction is ignored when the base code exists.
     if (c.fraction >= 0 && cx.target.version < Version(3, 4, 0, 0, 0) && implemented(c.letter, c.number, -1, vi)) continue;
     std::string name = c.fraction >= 0 ? fmt::format("{}{}.{}", c.letter, c.number, c.fraction)

@@ -67,6 +67,7 @@ inline std::string parse_dump(const ParsedFile& pf) {
   }
   for (const ParseError& e : pf.errors) out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
   for (Span s : pf.semicolon_cuts) out += "S " + std::to_string(s.begin) + '-' + std::to_string(s.end) + '\n';
+  for (uint32_t l : pf.rich_lines) out += "R " + std::to_string(l) + '\n';
   for (bool b : {pf.mixed_indentation, pf.any_exponent, pf.any_blank_before_colon, pf.any_repeated_letter,
                  pf.any_line_number, pf.any_tab_indent})
     out += b ? '1' : '0';

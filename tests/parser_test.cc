@@ -468,6 +468,13 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     CHECK(fast == full);
     CHECK(fast.find(" P") != std::string::npos);
   }
+  // The lines whose code holds a byte other than letters, digits, blanks, '.', '-', '+' and ':', on both paths.
+  for (bool fast : {true, false}) {
+    Parsed r = parse_text("G1 X1:2 ; (comment)\nM950 C\"a\"\nif x > 1\n  G1 X(1)\nG1 'a1\n; \"\n" +
+                              std::string(70, ' ') + "G1 X1\nG1 X{1}\n",
+                          ParseOptions{.fast_lines = fast});
+    CHECK(r.pf.rich_lines == std::vector<uint32_t>{1, 2, 3, 4, 7});
+  }
   // And every fixture.
   size_t files = 0;
   for (const auto& e : fs::recursive_directory_iterator(fs::path(RRFLINT_SOURCE_DIR) / "fixtures"))
