@@ -20,7 +20,15 @@ constexpr std::string_view kUnknownCode = "RRF901";
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
-bool ieq(std::string_view a, std::string_view b) { return a.size() == b.size() && to_lower(a) == to_lower(b); }
+char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
+
+// Case-insensitive (ASCII) equality, without the copies of to_lower (it runs on every comment).
+bool ieq(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (ascii_lower(a[i]) != ascii_lower(b[i])) return false;
+  return true;
+}
 
 // Which editor lines hold code (a command or meta command), from the parser's logical lines.
 std::vector<bool> code_lines(const ParsedFile& pf) {

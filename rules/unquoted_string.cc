@@ -64,6 +64,7 @@ struct StringParam {
   std::string_view what;
 };
 
+// The entries of one code are adjacent (check() walks a code's commands once for all its letters).
 constexpr StringParam kStringParams[] = {
     {98, 'P', true, "macro file name"}, {950, 'C', true, "pin name"},     {308, 'P', true, "pin name"},
     {308, 'Y', true, "sensor type"},    {308, 'A', true, "sensor name"},  {574, 'P', false, "pin name"},
@@ -139,15 +140,18 @@ bool needs_quotes(const Target& target, int number) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   if (cx.target.version < Version(3, 0, 0, 0, 0)) return;
-  for (const StringParam& sp : kStringParams) {
-    const bool quotes_needed = needs_quotes(cx.target, sp.number);
+  // By code, then by command, then by letter: a command's parameters are lexed once for all its letters.
+  for (const StringParam& first : kStringParams) {
+    if (&first != kStringParams && first.number == (&first)[-1].number) continue;  // the code was done
+    const bool quotes_needed = needs_quotes(cx.target, first.number);
     // A blank before the quote of an M98 file name breaks every version; other checks need the target.
-    if (!quotes_needed && sp.number != 98) continue;
-    for (const uint32_t i : pf.with_code('M', sp.number)) {
+    if (!quotes_needed && first.number != 98) continue;
+    for (const uint32_t i : pf.with_code('M', first.number)) {
       const Command& c = pf.commands[i];
       if (c.fraction >= 0) continue;
-      // RRF reads the first occurrence of the letter (Seen()).
-      if (ParamRef p = pf.find(c, sp.letter)) check_param(cx, c, *p, sp, quotes_needed, out);
+      for (const StringParam* sp = &first; sp != std::end(kStringParams) && sp->number == first.number; ++sp)
+        // RRF reads the first occurrence of the letter (Seen()).
+        if (ParamRef p = pf.find(c, sp->letter)) check_param(cx, c, *p, *sp, quotes_needed, out);
     }
   }
 }
