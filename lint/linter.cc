@@ -1,6 +1,8 @@
 #include "linter.h"
 
 #include <algorithm>
+#include <atomic>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -156,35 +158,39 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   // 2. The firmware target.
   res.target = infer_target(m, config, options.firmware, options.board);
 
-  // 3. The ordered command graph.
+  // 3. The ordered command graph, 4. per-file rules on every file loaded (including those the graph reached) and
+  // 5. the forward pass of the model with the node rules. A large machine runs the file rules and its suppression
+  // comments as tasks on other threads while this one builds the graph and runs the forward pass: the tasks that
+  // read only their own file start at once, those that need every file (Rule::whole_card, and the files the graph
+  // loads) once the graph is built. Each task reports to its own sink and the sinks are merged in a fixed order.
   GraphOptions go;
   go.firmware = res.target.version;
   go.sys_dir = options.sys_dir;
   go.include_entries = options.include_entries;
-  res.graph = build_graph(m, go);
-
-  // 4. Per-file rules on every file loaded (including those the graph reached), and 5. the forward pass of the
-  // model with the node rules. A large machine runs the file rules as tasks on other threads while this one runs
-  // the forward pass; each task reports to its own sink and the sinks are merged in the serial order.
   Sink sink;
-  ModelBuilder mb(m, res.graph, res.target.version, res.target.board);
+  std::optional<ModelBuilder> mb;
   const NodeDispatch dispatch(rules, options.dispatch_every_node);
-  MachineState boot_end = mb.initial_state();
+  MachineState boot_end;
   bool have_boot = false;
+  auto build = [&] {
+    res.graph = build_graph(m, go);
+    mb.emplace(m, res.graph, res.target.version, res.target.board);
+    boot_end = mb->initial_state();
+  };
   auto forward_pass = [&](Sink& node_sink) {
     for (const Segment& seg : res.graph.segments) {
-      MachineState s = seg.boot ? mb.initial_state() : boot_end;
+      MachineState s = seg.boot ? mb->initial_state() : boot_end;
       if (!seg.boot && !have_boot) s.unknown_baseline = true;
       for (NodeId id = seg.begin; id < seg.end; ++id) {
-        mb.decide(s, id);
+        mb->decide(s, id);
         const auto& node_rules = dispatch.rules_for(res.graph.nodes[id], m);
         if (!node_rules.empty()) {
-          if (const int runs = mb.runs(id); runs > 0) {
+          if (const int runs = mb->runs(id); runs > 0) {
             NodeContext nc{m, res.graph, res.target, options, s, id, runs};
             for (const Rule* r : node_rules) r->check_node(nc, node_sink);
           }
         }
-        mb.step(s, id);
+        mb->step(s, id);
       }
       if (seg.boot) {
         boot_end = s;
@@ -192,35 +198,82 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
       }
     }
   };
-  std::vector<std::pair<uint32_t, const Rule*>> file_tasks;
-  size_t bytes = 0;
-  for (uint32_t i = 0; i < m.unit_count(); ++i) {
-    bytes += m.unit(i).source->size();
+  auto file_rules = [&](const FileUnit& u, Sink& out, bool whole_card) {
+    const FileContext fc{m, u, res.target, options};
     for (const Rule* r : rules)
-      if (r->check_file) file_tasks.emplace_back(i, r);
-  }
-  auto file_task = [&](size_t k, Sink& out) {
-    FileContext fc{m, m.unit(file_tasks[k].first), res.target, options};
-    file_tasks[k].second->check_file(fc, out);
+      if (r->check_file && r->whole_card == whole_card) r->check_file(fc, out);
   };
+  size_t bytes = 0;
+  for (uint32_t i = 0; i < m.unit_count(); ++i) bytes += m.unit(i).source->size();
   std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
   const bool parallel = options.threads > 1 && bytes >= 2 * options.part_bytes;
   if (parallel) {
-    std::vector<Sink> sinks(file_tasks.size());
+    // The tasks: (file, rule) for the files loaded so far and the rules of one file; the suppression comments of
+    // those files; then, once the graph is built, each whole-card rule on every file, and all of the files the
+    // graph loaded.
+    // The files loaded so far, as pointers: the graph may add files (and move Machine's list) while tasks run.
+    std::vector<const FileUnit*> loaded;
+    for (uint32_t i = 0; i < m.unit_count(); ++i) loaded.push_back(&m.unit(i));
+    std::vector<std::pair<const FileUnit*, const Rule*>> own;
+    std::vector<const Rule*> whole;
+    for (const Rule* r : rules)
+      if (r->check_file && r->whole_card) whole.push_back(r);
+    for (const FileUnit* u : loaded)
+      for (const Rule* r : rules)
+        if (r->check_file && !r->whole_card) own.emplace_back(u, r);
+    const size_t n_dirs = options.inline_suppressions ? loaded.size() : 0;
+    const size_t n_early = own.size() + n_dirs;
+    std::vector<Sink> sinks(n_early + whole.size() + 1);
+    directives.resize(n_dirs);
+    std::vector<std::vector<Directive>> later_directives;  // of the files the graph loaded
     Sink node_sink;
-    if (options.inline_suppressions) directives.resize(m.unit_count());
-    // The tasks: every (file, rule), then the suppression comments of every file.
-    run_tasks(file_tasks.size() + directives.size(), options.threads, [&] { forward_pass(node_sink); },
+    std::atomic<bool> built{false};
+    run_tasks(sinks.size(), options.threads,
+              [&] {
+                struct Done {  // the waiting tasks go on even if the graph throws (the error is rethrown)
+                  std::atomic<bool>& b;
+                  ~Done() {
+                    b = true;
+                    b.notify_all();
+                  }
+                };
+                {
+                  Done done{built};
+                  build();
+                }
+                forward_pass(node_sink);
+              },
               [&](size_t k) {
-                if (k < file_tasks.size()) return file_task(k, sinks[k]);
-                const auto unit = static_cast<uint32_t>(k - file_tasks.size());
-                directives[unit] = parse_directives(m.unit(unit).parsed);
+                if (k < own.size()) {
+                  const FileContext fc{m, *own[k].first, res.target, options};
+                  return own[k].second->check_file(fc, sinks[k]);
+                }
+                if (k < n_early) {
+                  directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed);
+                  return;
+                }
+                built.wait(false);
+                if (k < n_early + whole.size()) {
+                  const Rule* r = whole[k - n_early];
+                  for (uint32_t i = 0; i < m.unit_count(); ++i)
+                    r->check_file(FileContext{m, m.unit(i), res.target, options}, sinks[k]);
+                  return;
+                }
+                for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
+                  file_rules(m.unit(i), sinks[k], false);
+                  if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed));
+                }
               });
+    for (auto& d : later_directives) directives.push_back(std::move(d));
     for (Sink& part : sinks)
       for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
     for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
   } else {
-    for (size_t k = 0; k < file_tasks.size(); ++k) file_task(k, sink);
+    build();
+    for (uint32_t i = 0; i < m.unit_count(); ++i) {
+      file_rules(m.unit(i), sink, false);
+      file_rules(m.unit(i), sink, true);
+    }
     forward_pass(sink);
   }
   res.end_of_boot = boot_end;

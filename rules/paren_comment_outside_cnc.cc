@@ -110,6 +110,6 @@ void check(const FileContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule paren_comment_outside_cnc{.meta = kMeta, .check_file = check};
+extern const Rule paren_comment_outside_cnc{.meta = kMeta, .check_file = check, .whole_card = true};
 
 }  // namespace rrflint

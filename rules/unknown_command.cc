@@ -105,6 +105,6 @@ void check(const FileContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule unknown_command{.meta = kMeta, .check_file = check};
+extern const Rule unknown_command{.meta = kMeta, .check_file = check, .whole_card = true};
 
 }  // namespace rrflint

@@ -4,6 +4,7 @@
 //   >/sys/a.g(M98)   a file starts, and why it runs      <   the file ends
 //   M98              a command (its word)                 =T0 / =T-1 / =T?   the moment a T selects a tool
 //   a leading ? marks a node that only maybe runs (inside if/while, or called from there)
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -12,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include "lint/graph.h"
+#include "lint/linter.h"
 
 using namespace rrflint;
 
@@ -284,4 +286,37 @@ TEST_CASE("graph: SD paths join and fold the way RRF's CombineName does", "[grap
   bool outside = false;
   CHECK_FALSE(resolve_sd_path("/sys", "../../x.g", &outside));
   CHECK(outside);
+}
+
+TEST_CASE("lint: threads report the same for files the graph loads while file rules run", "[graph]") {
+  // A large machine starts the file rules that read one file while the graph is built; the files the graph loads
+  // (here one outside the listed folders) and the rules that read the machine (unknown-command, the parenthesis
+  // rule) wait for it. Run with parts of a few bytes, so that this small card takes the parallel path.
+  auto lint = [](unsigned threads) {
+    MemoryReader reader;
+    reader.add("/sys/config.g", "M98 P\"/gcodes/start.g\"\nM117 \"x\"\nG1 X1 (note) Y2 ; rrflint: disable=RRF999\nM4321\n");
+    reader.add("/sys/homeall.g", "G1 X1 'a' ; text\nM4322\n");
+    reader.add("/gcodes/start.g", "M4323 ; not a command\nG1 X(1) Y1\nM117 \"it's\"\nG1 X1e5\n");
+    LintOptions o;
+    o.select = {"ALL"};
+    o.threads = threads;
+    o.part_bytes = 8;
+    SourceManager sources;
+    MachineResult r = lint_machine(sources, reader, o);
+    std::vector<std::string> out;
+    for (const Diagnostic& d : r.diagnostics)
+      out.push_back(sources.get(d.loc.file).sd_path() + " " + std::to_string(d.loc.span.begin) + " " +
+                    std::string(d.code) + " " + d.message);
+    return out;
+  };
+  const std::vector<std::string> serial = lint(1);
+  auto has = [&](std::string_view file, std::string_view code) {
+    return std::any_of(serial.begin(), serial.end(), [&](const std::string& s) {
+      return s.starts_with(file) && s.find(std::string(" ") + std::string(code) + " ") != std::string::npos;
+    });
+  };
+  CHECK(has("/gcodes/start.g", "RRF101"));  // unknown-command in the file the graph loaded
+  CHECK(has("/sys/homeall.g", "RRF101"));
+  CHECK(has("/sys/config.g", "RRF901"));    // a suppression of an unknown rule
+  for (unsigned threads : {2u, 3u}) CHECK(lint(threads) == serial);
 }
