@@ -182,15 +182,16 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
       MachineState s = seg.boot ? mb->initial_state() : boot_end;
       if (!seg.boot && !have_boot) s.unknown_baseline = true;
       for (NodeId id = seg.begin; id < seg.end; ++id) {
-        mb->decide(s, id);
-        const auto& node_rules = dispatch.rules_for(res.graph.nodes[id], m);
+        const Node node = res.graph.nodes[id];  // decoded once for the model and the dispatch
+        mb->decide(s, id, node);
+        const auto& node_rules = dispatch.rules_for(node, m);
         if (!node_rules.empty()) {
           if (const int runs = mb->runs(id); runs > 0) {
             NodeContext nc{m, res.graph, res.target, options, s, id, runs};
             for (const Rule* r : node_rules) r->check_node(nc, node_sink);
           }
         }
-        mb->step(s, id);
+        mb->step(s, id, node);
       }
       if (seg.boot) {
         boot_end = s;

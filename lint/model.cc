@@ -455,8 +455,7 @@ MachineState ModelBuilder::initial_state() const {
   return s;
 }
 
-void ModelBuilder::decide(const MachineState& s, NodeId id) {
-  const Node& n = g_.nodes[id];
+void ModelBuilder::decide(const MachineState& s, NodeId id, const Node& n) {
   uint8_t parent = n.enter == kNoNode ? 2 : exec_[n.enter];
   if (n.kind == NodeKind::Enter && n.call_site != kNoNode) parent = exec_[n.call_site];
   uint8_t e = std::min<uint8_t>(parent, n.maybe ? 1 : 2);
@@ -468,8 +467,7 @@ void ModelBuilder::decide(const MachineState& s, NodeId id) {
   exec_[id] = e;
 }
 
-void ModelBuilder::step(MachineState& s, NodeId id) const {
-  const Node& n = g_.nodes[id];
+void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
   const uint8_t e = exec_[id];
   if (e == 0) return;
   switch (n.kind) {
@@ -506,13 +504,12 @@ void ModelBuilder::step(MachineState& s, NodeId id) const {
       return;
     }
     case NodeKind::Command:
-      apply_command(s, id);
+      apply_command(s, id, n);
       return;
   }
 }
 
-void ModelBuilder::apply_command(MachineState& s, NodeId id) const {
-  const Node& n = g_.nodes[id];
+void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) const {
   const FileUnit& u = m_.unit(n.unit);
   // Most commands change nothing here (moves, settings): their code is read from the record alone.
   if (const CommandTable::Code code = u.parsed.commands.code(n.index);

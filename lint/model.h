@@ -158,14 +158,17 @@ class ModelBuilder {
  public:
   ModelBuilder(const Machine& m, const Graph& g, Version fw, Board board);
   MachineState initial_state() const;
-  void step(MachineState& s, NodeId id) const;
+  void step(MachineState& s, NodeId id) const { step(s, id, g_.nodes[id]); }
+  /// The same with the node already decoded (`n` is g_.nodes[id]).
+  void step(MachineState& s, NodeId id, const Node& n) const;
   /// Does node `id` run? 0 = no, 1 = maybe, 2 = yes (tool macros for a tool that does not exist do not run).
   int runs(NodeId id) const { return exec_[id]; }
   /// Must be called for nodes in order, before step(): decides whether the node runs.
-  void decide(const MachineState& s, NodeId id);
+  void decide(const MachineState& s, NodeId id) { decide(s, id, g_.nodes[id]); }
+  void decide(const MachineState& s, NodeId id, const Node& n);
 
  private:
-  void apply_command(MachineState& s, NodeId id) const;
+  void apply_command(MachineState& s, NodeId id, const Node& n) const;
   const Machine& m_;
   const Graph& g_;
   Version fw_;
