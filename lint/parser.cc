@@ -351,6 +351,15 @@ bool Lexer::next_param(const Command& cmd, uint32_t& p, uint32_t e, Param& param
   return true;
 }
 
+void LineSet::insert(uint32_t i) {
+  if (i / 64 >= words_.size()) words_.resize(i / 64 + 1, 0);  // only a parse on one thread (NUL bytes) gets here
+  std::atomic_ref<uint64_t>(words_[i / 64]).fetch_or(uint64_t{1} << (i % 64), std::memory_order_relaxed);
+}
+
+void LineSet::clear(uint32_t from, uint32_t to) {
+  for (uint32_t i = from; i < to && i / 64 < words_.size(); ++i) words_[i / 64] &= ~(uint64_t{1} << (i % 64));
+}
+
 // ---- Tables: records in, values out ----
 
 void CommandTable::add(const Command& c) {
@@ -454,7 +463,7 @@ class LineParser {
   void check_expression(uint32_t b, uint32_t e, std::string_view what);
   void add_line(const Line& line, bool cut_by_del) {
     if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end))
-      out_.rich_lines.push_back(next_line_);
+      rich_->insert(next_line_);
     detail::LineRec* r;
     if (in_place_) {
       r = &in_place_[next_line_];
@@ -469,6 +478,7 @@ class LineParser {
 
   ParsedFile& out_;
   Lexer lex_;
+  LineSet* rich_ = &out_.rich_lines;  // the file's set (a part of a file writes to the whole file's)
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
@@ -1174,7 +1184,6 @@ void LineParser::join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, ui
   pf.commands.append(std::move(part.commands));
   pf.errors.insert(pf.errors.end(), std::make_move_iterator(part.errors.begin()), std::make_move_iterator(part.errors.end()));
   pf.semicolon_cuts.insert(pf.semicolon_cuts.end(), part.semicolon_cuts.begin(), part.semicolon_cuts.end());
-  pf.rich_lines.insert(pf.rich_lines.end(), part.rich_lines.begin(), part.rich_lines.end());
 }
 
 // A file without NUL bytes has one logical line per editor line, so each part writes its line records in place.
@@ -1205,6 +1214,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     reserve_huge(out.commands.recs_, first[j + 1] - first[j] + 1);
     LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
     lp.fast_lines = opts.fast_lines;
+    lp.rich_ = &pf.rich_lines;
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
   };
@@ -1212,6 +1222,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
   for (unsigned j = 1; j < parts; ++j) {
     if (ps[j].cnc_in != ps[j - 1].cnc_out) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
+      pf.rich_lines.clear(first[j], first[j + 1]);
       run(j);
     }
   }
@@ -1268,6 +1279,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   pf.source = &file;
   pf.lines.source_ = &file;
   const std::string_view t = file.text();
+  pf.rich_lines.resize(file.line_count() + 1);  // NUL bytes add logical lines: insert() grows the set then
   const bool any_nul = std::memchr(t.data(), '\0', t.size()) != nullptr;
   const bool any_del = std::memchr(t.data(), 0x7f, t.size()) != nullptr;
   // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up

@@ -359,6 +359,61 @@ class ParamRange {
   Command c_;
 };
 
+/// A set of line indices, a bit per line of the file (about 0.4 MB for 3 million lines), iterated in order.
+class LineSet {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = uint32_t;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const uint32_t*;
+    using reference = uint32_t;
+    iterator() = default;
+    iterator(const std::vector<uint64_t>* w, size_t bit) : w_(w), bit_(bit) { seek(); }
+    uint32_t operator*() const { return static_cast<uint32_t>(bit_); }
+    iterator& operator++() {
+      ++bit_;
+      seek();
+      return *this;
+    }
+    iterator operator++(int) {
+      iterator r = *this;
+      ++*this;
+      return r;
+    }
+    friend bool operator==(const iterator& a, const iterator& b) { return a.bit_ == b.bit_; }
+
+   private:
+    void seek() {  // on to the next set bit, or the end
+      const size_t end = w_->size() * 64;
+      while (bit_ < end) {
+        const uint64_t rest = (*w_)[bit_ / 64] >> (bit_ % 64);
+        if (rest) {
+          bit_ += static_cast<size_t>(__builtin_ctzll(rest));
+          return;
+        }
+        bit_ = (bit_ / 64 + 1) * 64;
+      }
+      bit_ = end;
+    }
+    const std::vector<uint64_t>* w_ = nullptr;
+    size_t bit_ = 0;
+  };
+  iterator begin() const { return {&words_, 0}; }
+  iterator end() const { return {&words_, words_.size() * 64}; }
+  bool contains(uint32_t i) const { return i / 64 < words_.size() && (words_[i / 64] >> (i % 64) & 1); }
+
+ private:
+  friend class LineParser;
+  friend ParsedFile parse(const SourceFile&, const ParseOptions&);
+  void resize(size_t lines) { words_.assign(lines / 64 + 1, 0); }
+  /// Parts of a file parsed at once set bits of the same word at their edges: atomically.
+  void insert(uint32_t i);
+  void clear(uint32_t from, uint32_t to);
+  std::vector<uint64_t> words_;
+};
+
 /// The indices of a file's commands of one code, in file order (ParsedFile::with_code).
 class CodeCommands {
  public:
@@ -408,7 +463,7 @@ struct ParsedFile {
   std::vector<Span> semicolon_cuts;
   /// The lines whose code holds a byte other than a letter, digit, blank, '.', '-', '+' or ':' (a quote, a brace,
   /// a parenthesis, an apostrophe …), in order. A rule that looks for such a byte walks these lines only.
-  std::vector<uint32_t> rich_lines;
+  LineSet rich_lines;
   bool mixed_indentation = false;
   // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
   bool any_exponent = false;

@@ -473,7 +473,9 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     Parsed r = parse_text("G1 X1:2 ; (comment)\nM950 C\"a\"\nif x > 1\n  G1 X(1)\nG1 'a1\n; \"\n" +
                               std::string(70, ' ') + "G1 X1\nG1 X{1}\n",
                           ParseOptions{.fast_lines = fast});
-    CHECK(r.pf.rich_lines == std::vector<uint32_t>{1, 2, 3, 4, 7});
+    CHECK(std::vector<uint32_t>(r.pf.rich_lines.begin(), r.pf.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
+    CHECK(r.pf.rich_lines.contains(7));
+    CHECK_FALSE(r.pf.rich_lines.contains(6));
   }
   // And every fixture.
   size_t files = 0;
@@ -586,14 +588,17 @@ TEST_CASE("parser: a file parsed in parts on several threads parses as on one", 
     if (i % 1000 == 999) text += many_params + "\n";
   }
   const std::string serial = full_dump(parse_text(text));
+  const std::string serial_dump = test::parse_dump(parse_text(text).pf);
+  CHECK(serial_dump.find("\nR ") != std::string::npos);
   CHECK(serial.find("\nE ") != std::string::npos);  // the text has errors,
   CHECK(serial.find("\nS ") != std::string::npos);  // cut expressions,
   CHECK(serial.find("flags=1") != std::string::npos);  // CNC-mode commands
   for (unsigned threads : {2u, 3u, 4u, 7u}) {
     for (size_t part : {size_t{1}, size_t{700}, text.size() / 3}) {
       INFO("threads " << threads << ", parts of " << part << " bytes");
-      const std::string split = full_dump(parse_text(text, ParseOptions{.threads = threads, .part_bytes = part}));
-      CHECK(split == serial);
+      const Parsed split_parse = parse_text(text, ParseOptions{.threads = threads, .part_bytes = part});
+      CHECK(full_dump(split_parse) == serial);
+      CHECK(test::parse_dump(split_parse.pf) == serial_dump);  // parameters and rich lines too
     }
   }
   // Started in CNC mode (a macro run from a CNC config), every part agrees too.
