@@ -359,16 +359,28 @@ class ParamRange {
   Command c_;
 };
 
+namespace detail {
+// What a forward iterator over indices needs besides `*`, prefix `++` and `==` (CodeCommands, LineSet).
+template <class Derived>
+struct IndexIterator {
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = uint32_t;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const uint32_t*;
+  using reference = uint32_t;
+  Derived operator++(int) {
+    Derived r = static_cast<Derived&>(*this);
+    ++static_cast<Derived&>(*this);
+    return r;
+  }
+};
+}  // namespace detail
+
 /// A set of line indices, a bit per line of the file (about 0.4 MB for 3 million lines), iterated in order.
 class LineSet {
  public:
-  class iterator {
+  class iterator : public detail::IndexIterator<iterator> {
    public:
-    using iterator_category = std::forward_iterator_tag;
-    using value_type = uint32_t;
-    using difference_type = std::ptrdiff_t;
-    using pointer = const uint32_t*;
-    using reference = uint32_t;
     iterator() = default;
     iterator(const std::vector<uint64_t>* w, size_t bit) : w_(w), bit_(bit) { seek(); }
     uint32_t operator*() const { return static_cast<uint32_t>(bit_); }
@@ -377,11 +389,7 @@ class LineSet {
       seek();
       return *this;
     }
-    iterator operator++(int) {
-      iterator r = *this;
-      ++*this;
-      return r;
-    }
+    using IndexIterator::operator++;
     friend bool operator==(const iterator& a, const iterator& b) { return a.bit_ == b.bit_; }
 
    private:
@@ -418,13 +426,8 @@ class LineSet {
 class CodeCommands {
  public:
   static constexpr uint32_t kEnd = UINT32_MAX;
-  class iterator {
+  class iterator : public detail::IndexIterator<iterator> {
    public:
-    using iterator_category = std::forward_iterator_tag;
-    using value_type = uint32_t;
-    using difference_type = std::ptrdiff_t;
-    using pointer = const uint32_t*;
-    using reference = uint32_t;
     iterator() = default;
     iterator(const uint32_t* next, uint32_t i) : next_(next), i_(i) {}
     uint32_t operator*() const { return i_; }
@@ -432,11 +435,7 @@ class CodeCommands {
       i_ = next_[i_];
       return *this;
     }
-    iterator operator++(int) {
-      iterator r = *this;
-      ++*this;
-      return r;
-    }
+    using IndexIterator::operator++;
     friend bool operator==(const iterator& a, const iterator& b) { return a.i_ == b.i_; }
 
    private:
