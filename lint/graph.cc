@@ -155,29 +155,25 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     const CommandTable::Code code = pf.commands.code(ci);
     const bool m = maybe || pf.lines.in_block(code.line);
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode});
-    if (code.fraction >= 0 || (code.letter != 'T' && !(code.letter == 'M' && (code.number == 98 || code.number == 501 ||
-                                                                             code.number == 505))))
-      continue;  // most commands: read from the record alone
-    const Command& c = pf.commands[ci];
-    if (c.letter == 'M' && c.fraction < 0) {
-      if (c.number == 98) {
-        // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.
-        auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | ci);
-        if (fresh) {
-          auto p = get_string(pf, c, 'P');
-          if (p.known()) it->second = std::move(p.value);
-        }
-        if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
-      } else if (c.number == 501) {
-        call("config-override.g", CallKind::M501, id, m, depth, true);
-      } else if (c.number == 505) {
-        auto p = get_string(pf, c, 'P');
-        if (p.known() && !m) {
-          if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
-        }
+    // Most commands run nothing: their code is read from the record, and only these are decoded.
+    if (code.fraction >= 0) continue;
+    if (code.letter == 'T') {
+      tool_change(u, pf.commands[ci], id, m, depth);
+    } else if (code.letter == 'M' && code.number == 98) {
+      // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.
+      auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | ci);
+      if (fresh) {
+        auto p = get_string(pf, pf.commands[ci], 'P');
+        if (p.known()) it->second = std::move(p.value);
       }
-    } else if (c.letter == 'T' && c.fraction < 0) {
-      tool_change(u, c, id, m, depth);
+      if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
+    } else if (code.letter == 'M' && code.number == 501) {
+      call("config-override.g", CallKind::M501, id, m, depth, true);
+    } else if (code.letter == 'M' && code.number == 505) {
+      auto p = get_string(pf, pf.commands[ci], 'P');
+      if (p.known() && !m) {
+        if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
+      }
     }
   }
   stack_.pop_back();

@@ -91,6 +91,16 @@ RRFLINT_ALWAYS_INLINE inline __m128i letters(__m128i v) {
   return _mm_cmplt_epi8(_mm_xor_si128(off, _mm_set1_epi8(static_cast<char>(0x80))),
                         _mm_set1_epi8(static_cast<char>(0x80 + 26)));
 }
+// ASCII digits, the same way.
+RRFLINT_ALWAYS_INLINE inline __m128i digits(__m128i v) {
+  return _mm_cmplt_epi8(_mm_xor_si128(_mm_sub_epi8(v, _mm_set1_epi8('0')), _mm_set1_epi8(static_cast<char>(0x80))),
+                        _mm_set1_epi8(static_cast<char>(0x80 + 10)));
+}
+// The bytes that are not kBytes.rich: letters, digits, blanks, '.', '-', '+' and ':'.
+RRFLINT_ALWAYS_INLINE inline __m128i plain(__m128i v, __m128i letter, __m128i digit, __m128i blank) {
+  return _mm_or_si128(_mm_or_si128(_mm_or_si128(letter, digit), blank),
+                      _mm_or_si128(any_of(v, '.', '-'), any_of(v, '+', ':')));
+}
 #endif
 
 // The next byte that ends a value (kBytes.value_stop), or e.
@@ -120,11 +130,7 @@ RRFLINT_ALWAYS_INLINE inline uint32_t next_code_stop(const char* s, uint32_t n, 
 RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p, uint32_t e) {
 #if defined(__SSE2__)
   return find_class(s, n, p, e, kBytes.rich, [](__m128i v) {
-    const __m128i d = _mm_cmplt_epi8(_mm_xor_si128(_mm_sub_epi8(v, _mm_set1_epi8('0')), _mm_set1_epi8(static_cast<char>(0x80))),
-                                     _mm_set1_epi8(static_cast<char>(0x80 + 10)));
-    const __m128i plain = _mm_or_si128(_mm_or_si128(_mm_or_si128(letters(v), d), any_of(v, ' ', '\t')),
-                                       _mm_or_si128(any_of(v, '.', '-'), any_of(v, '+', ':')));
-    return _mm_xor_si128(plain, _mm_set1_epi8(-1));
+    return _mm_xor_si128(plain(v, letters(v), digits(v), any_of(v, ' ', '\t')), _mm_set1_epi8(-1));
   }) < e;
 #else
   return find_class(s, n, p, e, kBytes.rich, 0) < e;
@@ -375,7 +381,7 @@ void CommandTable::add(const Command& c) {
   if (wl >= 255) long_words_[i] = c.word.end;
   r.param_count = static_cast<uint8_t>(c.param_count < 255 ? c.param_count : 255);
   if (c.param_count >= 255) big_counts_[i] = c.param_count;
-  r.bits = static_cast<uint8_t>((c.letter == 'G' ? 0 : c.letter == 'M' ? 1 : 2) | (c.number_expr ? detail::kNumberExpr : 0) |
+  r.bits = static_cast<uint8_t>(detail::letter_bits(c.letter) | (c.number_expr ? detail::kNumberExpr : 0) |
                                 (c.has_number ? detail::kHasNumber : 0) | (c.cnc ? detail::kCnc : 0) |
                                 (c.any_exponent ? detail::kAnyExponent : 0) | (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
                                 (c.any_repeated_letter ? detail::kAnyRepeat : 0));
@@ -450,6 +456,12 @@ class LineParser {
  private:
   void error(uint32_t b, uint32_t e, std::string msg) { lex_.error(b, e, std::move(msg)); }
   bool simple_line(uint32_t b, uint32_t e);
+  // Tracks the machine mode for ( ) comments: M453 = CNC, M451/M452 = not; it applies from the next line.
+  void note_mode(char letter, int32_t number, int8_t fraction) {
+    if (letter != 'M' || fraction >= 0) return;
+    if (number == 453) next_cnc_ = true;
+    else if (number == 451 || number == 452) next_cnc_ = false;
+  }
   detail::LineRec& next_line_rec() {
     if (in_place_) return in_place_[next_line_++];
     ++next_line_;
@@ -648,12 +660,10 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   const auto chunk = [&](unsigned k) RRFLINT_ALWAYS_INLINE {
     const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + b + 16 * k));
     const __m128i l = letters(v);
-    const __m128i d = _mm_cmplt_epi8(_mm_xor_si128(_mm_sub_epi8(v, _mm_set1_epi8('0')), _mm_set1_epi8(static_cast<char>(0x80))),
-                                     _mm_set1_epi8(static_cast<char>(0x80 + 10)));
+    const __m128i d = digits(v);
     const __m128i bl = any_of(v, ' ', '\t');
     const __m128i co = _mm_cmpeq_epi8(v, _mm_set1_epi8(':'));
-    const __m128i ok = _mm_or_si128(_mm_or_si128(_mm_or_si128(l, d), _mm_or_si128(bl, co)),
-                                    _mm_or_si128(any_of(v, '.', '-'), _mm_cmpeq_epi8(v, _mm_set1_epi8('+'))));
+    const __m128i ok = plain(v, l, d, bl);
     const auto mask = [k](__m128i m) { return uint64_t{static_cast<uint16_t>(_mm_movemask_epi8(m))} << (16 * k); };
     letter |= mask(l);
     digit |= mask(d);
@@ -730,7 +740,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     c.end = end;
     c.params = static_cast<uint8_t>(np);
     const bool exp = exponent & below(next) & ~below(q + 1);
-    c.bits = static_cast<uint8_t>((L == 'G' ? 0 : L == 'M' ? 1 : 2) | (has_number ? detail::kHasNumber : 0) |
+    c.bits = static_cast<uint8_t>(detail::letter_bits(L) | (has_number ? detail::kHasNumber : 0) |
                                   (lex_.cnc ? detail::kCnc : 0) | (exp ? detail::kAnyExponent : 0) |
                                   (repeated ? detail::kAnyRepeat : 0));
     p = next;
@@ -750,10 +760,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     r.bits = c.bits;
     r.param_count = c.params;
     out_.commands.recs_.push_back(r);
-    if ((c.bits & detail::kLetterMask) == 1 && c.fraction < 0) {  // M453 = CNC from the next line, M451/M452 not
-      if (c.number == 453) next_cnc_ = true;
-      else if (c.number == 451 || c.number == 452) next_cnc_ = false;
-    }
+    note_mode(detail::letter_of(c.bits), c.number, c.fraction);
   }
   detail::LineRec& r = next_line_rec();
   r.code_begin = b + lead;
@@ -924,11 +931,7 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
     uint32_t end = p;
     while (end > cb && is_blank(t[end - 1])) --end;
     cmd.span = Span{cb, end};
-    // Track the machine mode for ( ) comments: M453 = CNC, M451/M452 = not; it applies from the next line.
-    if (cmd.letter == 'M' && cmd.fraction < 0) {
-      if (cmd.number == 453) next_cnc_ = true;
-      else if (cmd.number == 451 || cmd.number == 452) next_cnc_ = false;
-    }
+    note_mode(cmd.letter, cmd.number, cmd.fraction);
     out_.commands.add(cmd);
     ++line.command_count;
   }

@@ -135,7 +135,7 @@ struct ParseOptions {
   /// parsed again).
   unsigned threads = 1;
   size_t part_bytes = size_t{2} << 20;
-  /// Most lines (`G1 X10 Y20 ; note`: commands of letters, numbers and lists, no indentation) take a short path
+  /// Most lines (`G1 X10 Y20 ; note`: commands of letters, numbers and lists, indented by spaces if at all) take a short path
   /// that classifies the line's bytes 16 at a time. Off: every line goes through the full lexer. The result is the
   /// same either way; the tests compare the two.
   bool fast_lines = true;
@@ -164,11 +164,12 @@ enum CommandBits : uint8_t {
   kAnyRepeat = 128,
 };
 
-/// The command letter stored in a CommandRec's bits.
+/// The command letter stored in a CommandRec's bits, and the bits that store one ('G', 'M' or 'T').
 inline char letter_of(uint8_t bits) {
   const unsigned l = bits & kLetterMask;
   return l == 0 ? 'G' : l == 1 ? 'M' : 'T';
 }
+inline uint8_t letter_bits(char letter) { return letter == 'G' ? 0 : letter == 'M' ? 1 : 2; }
 
 // The stored form of a line: 20 bytes. Spans, the comment and the meta-command parts are recovered on decoding.
 // Both records are trivial (no member initialisers): LineTable::put and CommandTable::add write every field, and a

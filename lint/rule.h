@@ -116,7 +116,7 @@ struct Rule {
   void (*check_end)(const EndContext&, Sink&) = nullptr;
   /// check_file reads more than its own file (FileContext::machine: the other files, Machine::has_file,
   /// uses_code …). A large machine runs the other file rules while the graph is built and may still load files;
-  /// these run once it is built. (tests/rules_test.cc checks that a file rule naming the machine sets it.)
+  /// these run once it is built. (tests/fixtures_test.cc checks that a file rule naming the machine sets it.)
   bool whole_card = false;
   /// The commands check_node is called for, blank-separated: codes such as "G10 M563" (any fraction: "M569"
   /// takes M569.1 too) and "T" for every T command. The linter calls check_node for those nodes only, so the
