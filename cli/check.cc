@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "lint/parallel.h"
 #include "lint/render/render.h"
+#include "lint/trace.h"
 #include "lint/suppress.h"
 
 namespace rrflint::cli {
@@ -328,6 +329,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   else if (format == "concise") render_concise(*os, sm, t.diags, ro);
   else render_text(*os, sm, t.diags, ro);
   os->flush();
+  trace::mark("rendered");
   if (io_error) return kExitError;
   return t.failing && !co.exit_zero ? kExitFindings : kExitClean;
 }

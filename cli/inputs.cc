@@ -307,7 +307,7 @@ ReadResult JobReader::read(std::string_view sd_path) {
     } else {
       // Read afresh (a lint reads each file once): keeping a copy here would double the memory for the file.
       std::string err;
-      auto b = read_file(job_.standalone, &err);
+      auto b = read_text(job_.standalone, &err);
       if (!b) {
         r.status = ReadResult::Status::Error;
         r.error = err;
@@ -468,7 +468,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     // An explicit file: linted even when excluded, unless --force-exclude.
     if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) continue;
     std::string err;
-    if (!read_file(p, &err)) {
+    if (!probe_file(p, &err)) {
       error(fmt::format("{}: {}", p, err));
       io_error = true;
       continue;

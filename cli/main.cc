@@ -3,16 +3,36 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <iostream>
 #include <sstream>
 
 #include "cli.h"
+#include "lint/disk.h"
 #include "lint/render/model_render.h"
+#include "lint/trace.h"
 
 using namespace rrflint;
 using namespace rrflint::cli;
 
 namespace {
+
+// Large input files are mapped rather than copied (read_text). If another program cuts such a file short while
+// it is linted, reading the lost part raises SIGBUS: report that as an I/O error (exit 2), not as a crash.
+extern "C" void on_sigbus(int) {
+  static const char msg[] = "rrflint: error: an input file was truncated by another program while it was read\n";
+  [[maybe_unused]] const ssize_t n = ::write(2, msg, sizeof msg - 1);
+  ::_exit(kExitError);
+}
+
+void map_large_inputs() {
+  struct sigaction sa {};
+  sa.sa_handler = on_sigbus;
+  sigemptyset(&sa.sa_mask);
+  if (::sigaction(SIGBUS, &sa, nullptr) == 0) map_large_files(true);
+}
 
 std::vector<std::string> split_commas(const std::vector<std::string>& in) {
   std::vector<std::string> out;
@@ -49,6 +69,8 @@ bool validate(CliOptions& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rrflint::trace::mark("main");
+  map_large_inputs();
   // `--add-suppressions[=REASON]`: the reason must be attached with '=', so a path after the flag stays a path.
   std::vector<std::string> args(argv, argv + argc);
   std::optional<std::string> add_suppressions;
@@ -189,5 +211,7 @@ int main(int argc, char** argv) {
   co.format_given = format_opt->count() > 0;
   co.add_suppressions = add_suppressions;
   co.plan.respect_gitignore = !no_gitignore;
-  return run_check(cli, co);
+  const int rc = run_check(cli, co);
+  trace::mark("freed");
+  return rc;
 }

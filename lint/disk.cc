@@ -1,4 +1,5 @@
 #include "disk.h"
+#include "trace.h"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -6,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <system_error>
 
@@ -81,24 +83,54 @@ std::optional<std::string> path_below(std::string_view abs, std::string_view bas
   return std::nullopt;
 }
 
-std::optional<std::string> read_file(const std::string& path, std::string* error) {
+namespace {
+
+// Opens `path` for reading as read_file does; -1 with `error` set when it cannot (or it is a folder).
+int open_readable(const std::string& path, struct stat& st, std::string* error) {
+  auto fail = [&](const char* why) {
+    if (error) *error = why;
+    return -1;
+  };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (!error) return -1;
+    if (::stat(path.c_str(), &st) != 0) return fail("no such file");
+    return fail(S_ISDIR(st.st_mode) ? "is a directory" : "permission denied or unreadable");
+  }
+  const char* why = ::fstat(fd, &st) != 0 ? "read error" : S_ISDIR(st.st_mode) ? "is a directory" : nullptr;
+  if (why) {
+    ::close(fd);
+    return fail(why);
+  }
+  return fd;
+}
+
+struct Closer {
+  int fd;
+  ~Closer() { ::close(fd); }
+};
+
+}  // namespace
+
+bool probe_file(const std::string& path, std::string* error) {
+  struct stat st;
+  const int fd = open_readable(path, st, error);
+  if (fd < 0) return false;
+  ::close(fd);
+  return true;
+}
+
+namespace {
+
+std::atomic<bool> map_large{false};
+constexpr size_t kMapFrom = size_t{4} << 20;
+
+// read_file on an open file.
+std::optional<std::string> read_open(int fd, const struct stat& st, std::string* error) {
   auto fail = [&](const char* why) -> std::optional<std::string> {
     if (error) *error = why;
     return std::nullopt;
   };
-  struct stat st;
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    if (!error) return std::nullopt;
-    if (::stat(path.c_str(), &st) != 0) return fail("no such file");
-    return fail(S_ISDIR(st.st_mode) ? "is a directory" : "permission denied or unreadable");
-  }
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  if (::fstat(fd, &st) != 0) return fail("read error");
-  if (S_ISDIR(st.st_mode)) return fail("is a directory");
   // A file with a size: that many bytes (the file as it was when opened). Without one (empty, a pipe, /proc):
   // on to the end.
   const bool sized = S_ISREG(st.st_mode) && st.st_size > 0;
@@ -121,6 +153,34 @@ std::optional<std::string> read_file(const std::string& path, std::string* error
   }
   s.resize(got);
   return s;
+}
+
+}  // namespace
+
+void map_large_files(bool on) { map_large = on; }
+
+std::optional<std::string> read_file(const std::string& path, std::string* error) {
+  struct stat st;
+  const int fd = open_readable(path, st, error);
+  if (fd < 0) return std::nullopt;
+  const Closer closer{fd};
+  return read_open(fd, st, error);
+}
+
+std::optional<TextBuffer> read_text(const std::string& path, std::string* error) {
+  struct stat st;
+  const int fd = open_readable(path, st, error);
+  if (fd < 0) return std::nullopt;
+  const Closer closer{fd};
+  if (map_large && S_ISREG(st.st_mode) && static_cast<size_t>(st.st_size) >= kMapFrom)
+    if (const char* p = map_bytes(fd, static_cast<size_t>(st.st_size))) {
+      trace::mark("mapped");
+      return TextBuffer::mapped(p, static_cast<size_t>(st.st_size));
+    }
+  auto s = read_open(fd, st, error);
+  trace::mark("read");
+  if (!s) return std::nullopt;
+  return TextBuffer(std::move(*s));
 }
 
 std::string absolute_normal(const fs::path& p) {
@@ -204,7 +264,7 @@ ReadResult DiskReader::read(std::string_view sd_path) {
   auto where = locate(sd_path, &spelled);
   if (!where) return r;
   std::string err;
-  auto bytes = read_file(*where, &err);
+  auto bytes = read_text(*where, &err);
   auto rel = path_below(*where, base_);
   r.display = !rel || rel->starts_with("..") ? *where : rel->empty() ? std::string(".") : std::move(*rel);
   if (!bytes) {

@@ -82,6 +82,16 @@ class DiskReader : public FileReader {
 /// Reads a whole file; nullopt with `error` set on failure.
 std::optional<std::string> read_file(const std::string& path, std::string* error);
 
+/// Reads a whole file as read_file does, but maps a large regular file (4 MB or more) instead of copying it,
+/// once map_large_files(true) was called. A mapped file that another program cuts short while it is read raises
+/// SIGBUS, so only a program that handles SIGBUS should turn this on (the CLI does: cli/main.cc).
+std::optional<TextBuffer> read_text(const std::string& path, std::string* error);
+void map_large_files(bool on);
+
+/// Whether read_file would open `path` (not a folder, readable); `error` set as read_file sets it when not. Reads
+/// nothing, so a large file costs no more than a small one.
+bool probe_file(const std::string& path, std::string* error);
+
 /// Where an SD card starts for a path: a folder with sys/config.g, or a sys-like folder holding config.g.
 struct CardLocation {
   std::filesystem::path root;     // SD root ("/" on the card)

@@ -8,6 +8,7 @@
 
 #include "parallel.h"
 #include "suppress.h"
+#include "trace.h"
 
 namespace rrflint {
 
@@ -156,7 +157,9 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   }
 
   // 2. The firmware target.
+  trace::mark("loaded");
   res.target = infer_target(m, config, options.firmware, options.board);
+  trace::mark("target");
 
   // 3. The ordered command graph, 4. per-file rules on every file loaded (including those the graph reached) and
   // 5. the forward pass of the model with the node rules. A large machine runs the file rules and its suppression
@@ -174,6 +177,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   bool have_boot = false;
   auto build = [&] {
     res.graph = build_graph(m, go);
+    trace::mark("graph");
     mb.emplace(m, res.graph, res.target.version, res.target.board);
     boot_end = mb->initial_state();
   };
@@ -198,11 +202,15 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
         have_boot = true;
       }
     }
+    trace::mark("forward pass");
   };
   auto file_rules = [&](const FileUnit& u, Sink& out, bool whole_card) {
     const FileContext fc{m, u, res.target, options};
     for (const Rule* r : rules)
-      if (r->check_file && r->whole_card == whole_card) r->check_file(fc, out);
+      if (r->check_file && r->whole_card == whole_card) {
+        const trace::Scope time("rule", r->meta.name);
+        r->check_file(fc, out);
+      }
   };
   size_t bytes = 0;
   for (uint32_t i = 0; i < m.unit_count(); ++i) bytes += m.unit(i).source->size();
@@ -247,24 +255,29 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
               [&](size_t k) {
                 if (k < own.size()) {
                   const FileContext fc{m, *own[k].first, res.target, options};
+                  const trace::Scope time("rule", own[k].second->meta.name);
                   return own[k].second->check_file(fc, sinks[k]);
                 }
                 if (k < n_early) {
+                  const trace::Scope time("suppression comments");
                   directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed);
                   return;
                 }
                 built.wait(false);
                 if (k < n_early + whole.size()) {
                   const Rule* r = whole[k - n_early];
+                  const trace::Scope time("rule", r->meta.name);
                   for (uint32_t i = 0; i < m.unit_count(); ++i)
                     r->check_file(FileContext{m, m.unit(i), res.target, options}, sinks[k]);
                   return;
                 }
+                if (k + 1 == sinks.size()) trace::mark("last task started");
                 for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
                   file_rules(m.unit(i), sinks[k], false);
                   if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed));
                 }
               });
+    trace::mark("tasks joined");
     for (auto& d : later_directives) directives.push_back(std::move(d));
     for (Sink& part : sinks)
       for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
@@ -302,7 +315,9 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
                         }),
             out.end());
   // 7. Per-file ignores and suppression comments (lint/suppress.cc), which add RRF900/RRF901.
+  trace::mark("end rules, sort");
   apply_suppressions(res, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
+  trace::mark("suppressions");
   return res;
 }
 

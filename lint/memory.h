@@ -26,6 +26,30 @@ inline void advise_huge_pages(const void* p, size_t bytes) {
 #endif
 }
 
+/// Maps `size` (> 0) bytes of the open file `fd` read-only, or returns nullptr (then read it instead).
+inline const char* map_bytes(int fd, size_t size) {
+#if defined(__linux__)
+  void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+  if (p == MAP_FAILED) return nullptr;
+  ::madvise(p, size, MADV_SEQUENTIAL);
+  return static_cast<const char*>(p);
+#else
+  (void)fd;
+  (void)size;
+  return nullptr;
+#endif
+}
+
+/// Undoes map_bytes.
+inline void unmap_bytes(const char* p, size_t size) {
+#if defined(__linux__)
+  ::munmap(const_cast<char*>(p), size);
+#else
+  (void)p;
+  (void)size;
+#endif
+}
+
 /// Reserves `n` elements of `v` and advises huge pages for them.
 template <class Vector>
 void reserve_huge(Vector& v, size_t n) {

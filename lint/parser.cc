@@ -1,4 +1,5 @@
 #include "parser.h"
+#include "trace.h"
 
 #include <algorithm>
 #include <array>
@@ -386,6 +387,15 @@ void CommandTable::add(const Command& c) {
                                 (c.any_exponent ? detail::kAnyExponent : 0) | (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
                                 (c.any_repeated_letter ? detail::kAnyRepeat : 0));
   recs_.push_back(r);
+}
+
+std::vector<uint32_t> CommandTable::with_flag(Flag f) const {
+  std::vector<uint32_t> out;
+  const auto bit = static_cast<uint8_t>(f);
+  each_rec([&](size_t i, const detail::CommandRec& r) {
+    if (r.bits & bit) out.push_back(static_cast<uint32_t>(i));
+  });
+  return out;
 }
 
 const detail::CommandRec& CommandTable::tail_rec(size_t i) const {
@@ -1244,35 +1254,60 @@ uint16_t code_key(char letter, int32_t number) {
 
 }  // namespace
 
-// Links every command to the next of its code, from the end backwards, and records each code's first command.
+// Sorts the commands by code (a counting sort: two sweeps of the records) and records which codes have a fraction.
 void index_codes(ParsedFile& pf) {
   const size_t n = pf.commands.size();
-  pf.code_next_.resize(n);
-  std::array<uint32_t, kNoKey + 1> first;
-  first.fill(CodeCommands::kEnd);
+  std::vector<uint32_t>& start = pf.code_start_;
+  start.assign(kNoKey + 2, 0);
+  std::array<bool, kNoKey + 1> fraction{};
   bool exponent = false, blank_colon = false, repeated = false;
-  for (size_t i = n; i-- > 0;) {
-    const detail::CommandRec& r = pf.commands.rec(i);
+  uint8_t bits = 0;
+  pf.commands.each_rec([&](size_t, const detail::CommandRec& r) {
     const uint16_t key = code_key(detail::letter_of(r.bits), r.number);
-    pf.code_next_[i] = first[key];
-    first[key] = static_cast<uint32_t>(i);
-    exponent = exponent || (r.bits & detail::kAnyExponent);
-    blank_colon = blank_colon || (r.bits & detail::kAnyBlankColon);
-    repeated = repeated || (r.bits & detail::kAnyRepeat);
-  }
+    ++start[key + 1];
+    fraction[key] = fraction[key] || r.fraction >= 0;
+    bits |= r.bits;
+  });
+  exponent = bits & detail::kAnyExponent;
+  blank_colon = bits & detail::kAnyBlankColon;
+  repeated = bits & detail::kAnyRepeat;
+  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  std::vector<uint32_t> at(start.begin(), start.end() - 1);
+  pf.code_order_.resize(n);
+  pf.commands.each_rec([&](size_t i, const detail::CommandRec& r) {
+    pf.code_order_[at[code_key(detail::letter_of(r.bits), r.number)]++] = static_cast<uint32_t>(i);
+  });
   for (uint16_t k = 0; k < kNoKey; ++k)
-    if (first[k] != CodeCommands::kEnd) pf.code_first_.emplace_back(k, first[k]);
+    if (fraction[k]) pf.fraction_keys_.push_back(k);
   pf.any_exponent = exponent;
   pf.any_blank_before_colon = blank_colon;
   pf.any_repeated_letter = repeated;
 }
 
+CodeCommands ParsedFile::run(size_t key) const {
+  if (code_start_.empty()) return CodeCommands();
+  const uint32_t* base = code_order_.data();
+  return CodeCommands(base + code_start_[key], base + code_start_[key + 1], &commands, source->text().data());
+}
+
 CodeCommands ParsedFile::with_code(char letter, int32_t number) const {
   const uint16_t key = code_key(letter, number);
-  if (key == kNoKey) return CodeCommands(code_next_.data(), CodeCommands::kEnd);
-  auto it = std::lower_bound(code_first_.begin(), code_first_.end(), key,
-                             [](const std::pair<uint16_t, uint32_t>& e, uint16_t k) { return e.first < k; });
-  return CodeCommands(code_next_.data(), it != code_first_.end() && it->first == key ? it->second : CodeCommands::kEnd);
+  return key == kNoKey ? CodeCommands() : run(key);
+}
+
+CodeCommands ParsedFile::unlisted_codes() const { return run(kNoKey); }
+
+std::vector<ParsedFile::UsedCode> ParsedFile::used_codes() const {
+  std::vector<UsedCode> out;
+  if (code_start_.empty()) return out;
+  for (uint16_t key = 0; key < kNoKey; ++key) {
+    if (code_start_[key] == code_start_[key + 1]) continue;
+    const char letter = key == kTKey ? 'T' : key >= 1024 ? 'M' : 'G';
+    const int32_t number = key == kTKey ? -1 : key % 1024;
+    const bool fraction = std::binary_search(fraction_keys_.begin(), fraction_keys_.end(), key);
+    out.push_back(UsedCode{letter, number, fraction, run(key)});
+  }
+  return out;
 }
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
@@ -1281,10 +1316,9 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   pf.serial = ++serials;
   pf.source = &file;
   pf.lines.source_ = &file;
-  const std::string_view t = file.text();
   pf.rich_lines.resize(file.line_count() + 1);  // NUL bytes add logical lines: insert() grows the set then
-  const bool any_nul = std::memchr(t.data(), '\0', t.size()) != nullptr;
-  const bool any_del = std::memchr(t.data(), 0x7f, t.size()) != nullptr;
+  const bool any_nul = file.any_nul();
+  const bool any_del = file.any_del();
   // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up
   // for by the others taking more parts.
   const size_t parts = any_nul || opts.threads < 2 || opts.part_bytes == 0
@@ -1301,6 +1335,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     lp.fast_lines = opts.fast_lines;
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
+  trace::mark("parse: lines");
   // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
   run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) { k == 0 ? compute_blocks(pf) : index_codes(pf); });
   return pf;

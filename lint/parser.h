@@ -264,18 +264,34 @@ class CommandTable {
     const detail::CommandRec& r = rec(i);
     return Code{detail::letter_of(r.bits), r.number, r.fraction, r.line};
   }
+  /// The commands with Command::any_exponent / any_blank_before_colon / any_repeated_letter set, in order, read
+  /// from the records in one sweep (a rule about such commands need not decode every command).
+  enum class Flag : uint8_t {
+    Exponent = detail::kAnyExponent,
+    BlankBeforeColon = detail::kAnyBlankColon,
+    RepeatedLetter = detail::kAnyRepeat
+  };
+  std::vector<uint32_t> with_flag(Flag f) const;
 
  private:
   friend class LineParser;
   friend struct ParsedFile;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
+  friend class CodeCommands;
   void add(const Command& c);
   /// Appends the commands of a later part of the file (a parse in parts); `part` is left empty.
   void append(CommandTable&& part);
   uint32_t long_word_end(size_t i) const;
   uint32_t big_count(size_t i) const;
   const detail::CommandRec& rec(size_t i) const { return i < recs_.size() ? recs_[i] : tail_rec(i); }
+  /// Calls f(i, record) for every command in order: a sweep of the parts, with no per-command part look-up.
+  template <class F>
+  void each_rec(F f) const {
+    for (size_t i = 0; i < recs_.size(); ++i) f(i, recs_[i]);
+    for (const Tail& t : tails_)
+      for (size_t i = 0; i < t.recs.size(); ++i) f(t.begin + i, t.recs[i]);
+  }
   const detail::CommandRec& tail_rec(size_t i) const;
   std::vector<detail::CommandRec> recs_;
   // A file parsed in parts keeps the later parts' records as they were made, after recs_: no copy, no peak.
@@ -423,34 +439,47 @@ class LineSet {
   std::vector<uint64_t> words_;
 };
 
-/// The indices of a file's commands of one code, in file order (ParsedFile::with_code).
+/// The indices of a file's commands of one code, in file order (ParsedFile::with_code): a run of a table sorted
+/// by code. The commands of a code lie far apart in a large file, so the iterator asks the processor to fetch the
+/// records and the text of the commands a few steps ahead.
 class CodeCommands {
  public:
-  static constexpr uint32_t kEnd = UINT32_MAX;
   class iterator : public detail::IndexIterator<iterator> {
    public:
     iterator() = default;
-    iterator(const uint32_t* next, uint32_t i) : next_(next), i_(i) {}
-    uint32_t operator*() const { return i_; }
+    iterator(const uint32_t* p, const uint32_t* end, const CommandTable* table, const char* text)
+        : p_(p), end_(end), table_(table), text_(text) {}
+    uint32_t operator*() const { return *p_; }
     iterator& operator++() {
-      i_ = next_[i_];
+      ++p_;
+#if defined(__GNUC__)
+      if (end_ - p_ > 8) __builtin_prefetch(&table_->rec(p_[8]));
+      if (end_ - p_ > 4) __builtin_prefetch(text_ + table_->rec(p_[4]).begin);
+#endif
       return *this;
     }
     using IndexIterator::operator++;
-    friend bool operator==(const iterator& a, const iterator& b) { return a.i_ == b.i_; }
+    friend bool operator==(const iterator& a, const iterator& b) { return a.p_ == b.p_; }
 
    private:
-    const uint32_t* next_ = nullptr;
-    uint32_t i_ = kEnd;
+    const uint32_t* p_ = nullptr;
+    const uint32_t* end_ = nullptr;
+    const CommandTable* table_ = nullptr;
+    const char* text_ = nullptr;
   };
-  CodeCommands(const uint32_t* next, uint32_t first) : next_(next), first_(first) {}
-  iterator begin() const { return {next_, first_}; }
-  iterator end() const { return {next_, kEnd}; }
-  bool empty() const { return first_ == kEnd; }
+  CodeCommands() = default;
+  CodeCommands(const uint32_t* begin, const uint32_t* end, const CommandTable* table, const char* text)
+      : begin_(begin), end_(end), table_(table), text_(text) {}
+  iterator begin() const { return {begin_, end_, table_, text_}; }
+  iterator end() const { return {end_, end_, table_, text_}; }
+  bool empty() const { return begin_ == end_; }
+  size_t size() const { return static_cast<size_t>(end_ - begin_); }
 
  private:
-  const uint32_t* next_;
-  uint32_t first_;
+  const uint32_t* begin_ = nullptr;
+  const uint32_t* end_ = nullptr;
+  const CommandTable* table_ = nullptr;
+  const char* text_ = nullptr;
 };
 
 struct ParsedFile {
@@ -476,6 +505,17 @@ struct ParsedFile {
   /// The commands with this letter and number (any fraction), in file order, as indices into `commands`. For
   /// 'T' every T command, whatever its number. Numbers outside 0…1023 have no list: filter `commands` for them.
   CodeCommands with_code(char letter, int32_t number) const;
+  /// The codes the file uses, in key order (G by number, then M, then T), each with its commands and whether
+  /// one of them has a fraction (G59.3): a rule about codes looks at each code once instead of at every command.
+  struct UsedCode {
+    char letter;
+    int32_t number;  // -1 for T
+    bool any_fraction;
+    CodeCommands commands;
+  };
+  std::vector<UsedCode> used_codes() const;
+  /// The G and M commands with no list in with_code (no number, or one outside 0…1023), in file order.
+  CodeCommands unlisted_codes() const;
 
   std::string_view text(Span s) const { return source->slice(s); }
   /// The parameters of a command, in order.
@@ -487,9 +527,12 @@ struct ParsedFile {
  private:
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
-  // Per code, its first command, and per command the next one of the same code (CodeCommands::kEnd: none).
-  std::vector<std::pair<uint16_t, uint32_t>> code_first_;  // (key, first command), by key
-  std::vector<uint32_t> code_next_;
+  CodeCommands run(size_t key) const;
+  // Every command's index, sorted by code key (then file order); the run of key k is [code_start_[k],
+  // code_start_[k + 1]). Keys: G0…G1023, M0…M1023, T, then the commands of no key (unlisted_codes).
+  std::vector<uint32_t> code_order_;
+  std::vector<uint32_t> code_start_;
+  std::vector<uint16_t> fraction_keys_;  // the keys with a fractional command, in order
 };
 
 RRFLINT_ALWAYS_INLINE inline Command CommandTable::operator[](size_t i) const {

@@ -19,7 +19,7 @@ namespace rrflint {
 
 struct ReadResult {
   enum class Status { Ok, NotFound, Error } status = Status::NotFound;
-  std::string bytes;
+  TextBuffer bytes;
   std::string error;    // for Status::Error: what went wrong (permission denied, is a directory, …)
   std::string display;  // how to show the path to a user
   std::string sd_path;  // the path as found (the SD card is case-insensitive, so this may differ in case)

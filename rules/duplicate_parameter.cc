@@ -49,8 +49,8 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   if (!pf.any_repeated_letter) return;  // the parse's summary: no command has the flag
-  for (const Command& c : pf.commands) {
-    if (!c.any_repeated_letter) continue;  // most commands repeat no letter
+  for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::RepeatedLetter)) {
+    const Command& c = pf.commands[ci];
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
     uint32_t stop = c.span.end;
     if (lex::contains(t, c.span, '(')) lex::for_each_plain(t, c.span, [&](uint32_t k) {

@@ -50,8 +50,8 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   if (!pf.any_exponent) return;  // the parse's summary: no command has the flag
-  for (const Command& c : pf.commands) {
-    if (!c.any_exponent) continue;
+  for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::Exponent)) {
+    const Command& c = pf.commands[ci];
     for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
       if (!p->exponent_letter || p->letter == 0) continue;
       uint32_t at = 0;

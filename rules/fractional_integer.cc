@@ -68,12 +68,28 @@ size_t fraction_dot(std::string_view item) {
   return std::string_view::npos;
 }
 
+// Could a '.' of `s` be in the value of one of `letters`? Each '.' outside strings and expressions belongs to the
+// value of the last letter before it, unless that letter is an exponent E (then the parameters decide). A command
+// whose dots are all in other values (G10 P0: P and L are the integer letters) needs no lexing.
+bool dot_may_count(std::string_view t, Span s, std::string_view letters) {
+  char last = 0;  // the last letter met, upper-cased; 0 before any
+  bool may = false;
+  lex::for_each_plain(t, s, [&](uint32_t k) {
+    const char ch = t[k];
+    if (lex::is_alpha(ch)) last = static_cast<char>(ch & ~0x20);
+    else if (ch == '.' && (last == 0 || last == 'E' || letters.find(last) != std::string_view::npos)) may = true;
+    return !may;
+  });
+  return may;
+}
+
 // Checks the integer parameters `letters` of `c`, a command of their code.
 void check_command(const FileContext& cx, const Command& c, std::string_view letters, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   // A fraction makes it another command. The usual case: no '.' anywhere in the command, so no fraction (read
   // without lexing the parameters).
   if (c.fraction >= 0 || !lex::contains(pf.source->text(), c.span, '.')) return;
+  if (!dot_may_count(pf.source->text(), c.span, letters)) return;
   uint32_t seen = 0;  // the letters met so far: RRF reads the first parameter with a letter
   for (auto it = pf.params(c).begin(); it != ParamRange::iterator(); ++it) {
     const Param* p = &*it;

@@ -24,7 +24,7 @@ inline bool is_raw_text(const Command& c, const Param& p) {
 }
 
 /// Does span `s` of `t` hold the byte `c`?
-inline bool contains(std::string_view t, Span s, char c) { return t.substr(s.begin, s.size()).find(c) != std::string_view::npos; }
+inline bool contains(std::string_view t, Span s, char c) { return span_has(t, s, c); }
 
 /// `s`, cut to `n` characters with "…" for a message.
 inline std::string clip(std::string_view s, size_t n = 40) {

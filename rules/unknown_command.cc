@@ -82,16 +82,17 @@ bool implemented(char letter, int number, int fraction, int vi) {
 void check(const FileContext& cx, Sink& out) {
   const int vi = version_index(cx.target.version);
   const ParsedFile& pf = cx.parsed();
-  for (size_t i = 0; i < pf.commands.size(); ++i) {
+  // By code: a code that exists, with no fractional command, clears all of its commands at once.
+  auto check_command = [&](uint32_t i) {
     const CommandTable::Code k = pf.commands.code(i);  // from the record: most commands stop here
-    if (k.letter == 'T' || k.number < 0) continue;
-    if (implemented(k.letter, k.number, k.fraction, vi)) continue;
+    if (k.letter == 'T' || k.number < 0) return;
+    if (implemented(k.letter, k.number, k.fraction, vi)) return;
     const Command& c = pf.commands[i];
     // Before 3.4 a fraction is ignored when the base code exists.
-    if (c.fraction >= 0 && cx.target.version < Version(3, 4, 0, 0, 0) && implemented(c.letter, c.number, -1, vi)) continue;
+    if (c.fraction >= 0 && cx.target.version < Version(3, 4, 0, 0, 0) && implemented(c.letter, c.number, -1, vi)) return;
     std::string name = c.fraction >= 0 ? fmt::format("{}{}.{}", c.letter, c.number, c.fraction)
                                        : fmt::format("{}{}", c.letter, c.number);
-    if (cx.machine.has_file("/sys/" + name + ".g")) continue;
+    if (cx.machine.has_file("/sys/" + name + ".g")) return;
     bool elsewhere = false;
     for (int v = 0; v <= 7; ++v) elsewhere = elsewhere || implemented(c.letter, c.number, c.fraction, v);
     std::string why = elsewhere ? fmt::format("RRF {} does not implement it (other versions do)", cx.target.version.str())
@@ -100,7 +101,12 @@ void check(const FileContext& cx, Sink& out) {
                fmt::format("'{}' is not a command: {}, so it answers '{}: Command is not supported'; a /sys/{}.g "
                            "macro would run instead",
                            name, why, name, name));
+  };
+  for (const ParsedFile::UsedCode& code : pf.used_codes()) {
+    if (code.letter == 'T' || (!code.any_fraction && implemented(code.letter, code.number, -1, vi))) continue;
+    for (const uint32_t i : code.commands) check_command(i);
   }
+  for (const uint32_t i : pf.unlisted_codes()) check_command(i);
 }
 
 }  // namespace

@@ -137,6 +137,20 @@ bool needs_quotes(const Target& target, int number) {
   return false;
 }
 
+// The letters (bit L - 'A') of `s` that occur outside strings and expressions with something other than '"' or
+// '{' right after them. A letter not among them has a quoted value wherever it stands as a parameter, so
+// check_param would find nothing: most commands are cleared by this scan, without lexing their parameters.
+uint32_t letters_without_quote(std::string_view t, Span s) {
+  uint32_t out = 0;
+  lex::for_each_plain(t, s, [&](uint32_t k) {
+    const char ch = t[k];
+    if (lex::is_alpha(ch) && (k + 1 >= s.end || (t[k + 1] != '"' && t[k + 1] != '{')))
+      out |= 1u << ((ch & ~0x20) - 'A');
+    return true;
+  });
+  return out;
+}
+
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   if (cx.target.version < Version(3, 0, 0, 0, 0)) return;
@@ -149,9 +163,11 @@ void check(const FileContext& cx, Sink& out) {
     for (const uint32_t i : pf.with_code('M', first.number)) {
       const Command& c = pf.commands[i];
       if (c.fraction >= 0) continue;
+      const uint32_t unquoted = letters_without_quote(pf.source->text(), c.span);
       for (const StringParam* sp = &first; sp != std::end(kStringParams) && sp->number == first.number; ++sp)
         // RRF reads the first occurrence of the letter (Seen()).
-        if (ParamRef p = pf.find(c, sp->letter)) check_param(cx, c, *p, *sp, quotes_needed, out);
+        if (unquoted & (1u << (sp->letter - 'A')))
+          if (ParamRef p = pf.find(c, sp->letter)) check_param(cx, c, *p, *sp, quotes_needed, out);
     }
   }
 }

@@ -523,3 +523,23 @@ TEST_CASE("cli: a macro in a sys folder under another name is linted with its ca
   CHECK(contains(o.out, "printer/homeall.g:1:1"));
   CHECK(contains(o.out, "printer/park.g:1:1"));
 }
+
+TEST_CASE("cli: a large file, mapped rather than read, reports what the same bytes from stdin report", "[cli]") {
+  TempTree t;
+  // 4 MB and more is mapped. Findings at the start and at the very end, and a size that is a whole number of
+  // pages, so that every scan runs up to the end of the mapping.
+  std::string big = "M584 X0 Y1 Z2\nM9999\n";
+  while (big.size() < (size_t{5} << 20)) big += "G1 X10.5 Y20 F3000 ; a move\nM950 H1 C\"out1\" T1\n";
+  const std::string last = "\nM950 H2 Cout2 T1";
+  big.resize((size_t{5} << 20) - last.size());
+  big += last;
+  REQUIRE(big.size() % 4096 == 0);
+  t.write("big.g", big);
+  const auto mapped = run_rrflint(t.root(), "check --format concise big.g");
+  const auto piped = run_rrflint(t.root(), "check --format concise --stdin-filename big.g -", "", big);
+  CHECK(mapped.code == 1);
+  CHECK(mapped.err == piped.err);
+  CHECK(mapped.out == piped.out);
+  CHECK(contains(mapped.out, "big.g:2:1: warning:"));                       // M9999
+  CHECK(contains(mapped.out, "unquoted pin name 'out2'"));                  // the last line
+}

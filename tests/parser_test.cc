@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include "lint/parser.h"
 #include "param_check.h"
@@ -623,4 +624,71 @@ TEST_CASE("parser: commands by code", "[parser]") {
   CHECK(q.pf.any_tab_indent);
   CHECK(q.pf.any_repeated_letter);
   CHECK_FALSE(parse_text("if true\n\t; only a comment\n").pf.any_tab_indent);
+}
+
+TEST_CASE("parser: the codes a file uses, and the commands with a flag", "[parser]") {
+  const std::string text = "M563 P0\nG1 X1\nT0\nM563.1 P1 G1 Y2\nT{1}\nM1024\nG1 X80E4\nM584 E3 :4 X0 X1\nG59.3\nG-1\n";
+  for (unsigned threads : {1u, 3u}) {
+    INFO("threads " << threads);
+    Parsed p = parse_text(text, ParseOptions{.threads = threads, .part_bytes = 4});
+    // Each code once, in key order (G, then M, then T), with its commands in file order.
+    std::vector<std::string> seen;
+    for (const ParsedFile::UsedCode& u : p.pf.used_codes()) {
+      std::string s = fmt::format("{}{}{}:", u.letter, u.number, u.any_fraction ? "f" : "");
+      for (uint32_t i : u.commands) s += fmt::format(" {}", i);
+      seen.push_back(s);
+    }
+    CHECK(seen == std::vector<std::string>{"G1: 1 4 7", "G59f: 9", "M563f: 0 3", "M584: 8", "T-1: 2 5"});
+    std::vector<uint32_t> unlisted(p.pf.unlisted_codes().begin(), p.pf.unlisted_codes().end());
+    CHECK(unlisted == std::vector<uint32_t>{6, 10});  // M1024 and G-1: no list of their own
+    // The flags, as the decoded commands have them.
+    for (auto [flag, field] : {std::pair{CommandTable::Flag::Exponent, &Command::any_exponent},
+                               std::pair{CommandTable::Flag::BlankBeforeColon, &Command::any_blank_before_colon},
+                               std::pair{CommandTable::Flag::RepeatedLetter, &Command::any_repeated_letter}}) {
+      std::vector<uint32_t> want;
+      for (uint32_t i = 0; i < p.pf.commands.size(); ++i)
+        if (p.pf.commands[i].*field) want.push_back(i);
+      CHECK_FALSE(want.empty());
+      CHECK(p.pf.commands.with_flag(flag) == want);
+    }
+  }
+  CHECK(parse_text("").pf.used_codes().empty());
+  CHECK(parse_text("").pf.with_code('G', 1).empty());
+}
+
+TEST_CASE("source: the line index notes NUL and DEL bytes, and CR sends it to the general scan", "[parser]") {
+  for (unsigned threads : {1u, 2u, 3u}) {
+    INFO("threads " << threads);
+    const std::string plain(100, 'G');
+    for (size_t at : {size_t{0}, size_t{15}, size_t{16}, size_t{50}, size_t{99}}) {
+      INFO("at " << at);
+      for (char c : {'\0', '\x7f', '\r'}) {
+        std::string t = plain;
+        t[at] = c;
+        const SourceFile f(0, "t.g", "/sys/t.g", t, threads);
+        CHECK(f.any_nul() == (c == '\0'));
+        CHECK(f.any_del() == (c == '\x7f'));
+        CHECK(f.endings().cr == (c == '\r' ? 1u : 0u));
+        CHECK(f.line_count() == (c == '\r' && at < 99 ? 2u : 1u));
+      }
+    }
+    const SourceFile none(0, "t.g", "/sys/t.g", "G1\nM2\n", threads);
+    CHECK_FALSE(none.any_nul());
+    CHECK_FALSE(none.any_del());
+    const SourceFile crlf(0, "t.g", "/sys/t.g", "G1\r\nM2\nG3\r\n", threads);
+    CHECK(crlf.line_count() == 3);
+    CHECK(crlf.endings().crlf == 2);
+    CHECK(crlf.endings().lf == 1);
+  }
+}
+
+TEST_CASE("source: span_has finds a byte in any span, also near the end of the buffer", "[parser]") {
+  std::string t;
+  for (int i = 0; i < 70; ++i) t += static_cast<char>('a' + i % 26);
+  for (uint32_t b = 0; b <= t.size(); ++b)
+    for (uint32_t e = b; e <= t.size(); ++e)
+      for (char c : {'a', 'q', 'r', 'z', '!'}) {
+        const bool want = t.substr(b, e - b).find(c) != std::string::npos;
+        if (span_has(t, Span{b, e}, c) != want) FAIL("span [" << b << ", " << e << ") byte " << c);
+      }
 }
