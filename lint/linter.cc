@@ -110,9 +110,11 @@ class NodeDispatch {
       }
     }
   }
-  const std::vector<const Rule*>& rules_for(const Node& node, const Machine& m) const {
-    if (!every_.empty() || node.kind != NodeKind::Command) return every_;
-    const CommandTable::Code c = m.unit(node.unit).parsed.commands.code(node.index);
+  /// The rules for a node that is not a command.
+  const std::vector<const Rule*>& rules_for_other() const { return every_; }
+  /// The rules for a command node of code `c`.
+  const std::vector<const Rule*>& rules_for(const CommandTable::Code& c) const {
+    if (!every_.empty()) return every_;
     if (c.letter == 'T') return t_;
     const auto& table = c.letter == 'G' ? g_ : m_;
     if (c.number < 0 || c.number >= static_cast<int>(table.size())) return none_;
@@ -188,14 +190,18 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
       for (NodeId id = seg.begin; id < seg.end; ++id) {
         const Node node = res.graph.nodes[id];  // decoded once for the model and the dispatch
         mb->decide(s, id, node);
-        const auto& node_rules = dispatch.rules_for(node, m);
+        // A command's code is read once, from its record: most commands wake no rule and change nothing.
+        const bool command = node.kind == NodeKind::Command;
+        const CommandTable::Code code =
+            command ? m.unit(node.unit).parsed.commands.code(node.index) : CommandTable::Code{};
+        const auto& node_rules = command ? dispatch.rules_for(code) : dispatch.rules_for_other();
         if (!node_rules.empty()) {
           if (const int runs = mb->runs(id); runs > 0) {
             NodeContext nc{m, res.graph, res.target, options, s, id, runs};
             for (const Rule* r : node_rules) r->check_node(nc, node_sink);
           }
         }
-        mb->step(s, id, node);
+        if (!command || ModelBuilder::changes_state(code)) mb->step(s, id, node);
       }
       if (seg.boot) {
         boot_end = s;

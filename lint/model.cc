@@ -512,9 +512,7 @@ void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
 void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) const {
   const FileUnit& u = m_.unit(n.unit);
   // Most commands change nothing here (moves, settings): their code is read from the record alone.
-  if (const CommandTable::Code code = u.parsed.commands.code(n.index);
-      code.fraction >= 0 || code.letter == 'T' || (code.letter == 'G' && code.number != 10))
-    return;
+  if (!changes_state(u.parsed.commands.code(n.index))) return;
   const Command& c = u.parsed.commands[n.index];
   Cx x{s, u.parsed, c, id, exec_[id] == 1};
   if (c.letter == 'G') return do_g10(x);

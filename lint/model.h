@@ -166,6 +166,11 @@ class ModelBuilder {
   /// Must be called for nodes in order, before step(): decides whether the node runs.
   void decide(const MachineState& s, NodeId id) { decide(s, id, g_.nodes[id]); }
   void decide(const MachineState& s, NodeId id, const Node& n);
+  /// Can a command of this code change the state? Most cannot (moves, settings): step() does nothing for them,
+  /// and the forward pass need not call it.
+  static bool changes_state(const CommandTable::Code& c) {
+    return c.fraction < 0 && (c.letter == 'M' || (c.letter == 'G' && c.number == 10));
+  }
 
  private:
   void apply_command(MachineState& s, NodeId id, const Node& n) const;

@@ -399,9 +399,11 @@ std::vector<uint32_t> CommandTable::with_flag(Flag f) const {
 }
 
 const detail::CommandRec& CommandTable::tail_rec(size_t i) const {
-  for (auto t = tails_.rbegin(); t != tails_.rend(); ++t)
-    if (i >= t->begin) return t->recs[i - t->begin];
-  return recs_[i];  // not reached: i < size()
+  // The last tail that starts at or before i's block of 64K commands, then on to i's own (tails of a few
+  // commands, in tests, may share a block).
+  size_t t = block_tail_[i >> 16];
+  while (t + 1 < tails_.size() && i >= tails_[t + 1].begin) ++t;
+  return tails_[t].recs[i - tails_[t].begin];
 }
 
 void CommandTable::append(CommandTable&& part) {
@@ -411,6 +413,12 @@ void CommandTable::append(CommandTable&& part) {
   tail_size_ += part.recs_.size();
   tails_.push_back(Tail{base, std::move(part.recs_)});
   part = CommandTable{};
+  block_tail_.assign((size() >> 16) + 1, 0);
+  uint32_t t = 0;
+  for (size_t b = 0; b < block_tail_.size(); ++b) {
+    while (t + 1 < tails_.size() && tails_[t + 1].begin <= b << 16) ++t;
+    block_tail_[b] = t;
+  }
 }
 
 uint32_t CommandTable::long_word_end(size_t i) const { return long_words_.at(static_cast<uint32_t>(i)); }

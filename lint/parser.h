@@ -301,6 +301,7 @@ class CommandTable {
   };
   std::vector<Tail> tails_;
   size_t tail_size_ = 0;
+  std::vector<uint32_t> block_tail_;  // per block of 64K commands: the last tail starting at or before it
   std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words of 255 bytes or more
   std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
 };
