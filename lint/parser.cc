@@ -369,6 +369,28 @@ void LineSet::clear(uint32_t from, uint32_t to) {
 
 // ---- Tables: records in, values out ----
 
+namespace {
+
+// Code keys: G0…G1023, then M0…M1023, then every T.
+constexpr uint16_t kTKey = 2048, kNoKey = 2049;
+uint16_t code_key(char letter, int32_t number) {
+  if (letter == 'T') return kTKey;
+  if (number < 0 || number >= 1024) return kNoKey;
+  return static_cast<uint16_t>((letter == 'M' ? 1024 : 0) + number);
+}
+
+}  // namespace
+
+// Appends a record and counts its code for index_codes, which then needs no sweep of its own to size the runs.
+inline void CommandTable::push_rec(const detail::CommandRec& r) {
+  if (key_counts_.empty()) key_counts_.assign(kNoKey + 1, 0);
+  const uint16_t key = code_key(detail::letter_of(r.bits), r.number);
+  ++key_counts_[key];
+  if (r.fraction >= 0 && (fraction_keys_.empty() || fraction_keys_.back() != key)) fraction_keys_.push_back(key);
+  all_bits_ |= r.bits;
+  recs_.push_back(r);
+}
+
 void CommandTable::add(const Command& c) {
   detail::CommandRec r;
   const auto i = static_cast<uint32_t>(recs_.size());
@@ -386,7 +408,7 @@ void CommandTable::add(const Command& c) {
                                 (c.has_number ? detail::kHasNumber : 0) | (c.cnc ? detail::kCnc : 0) |
                                 (c.any_exponent ? detail::kAnyExponent : 0) | (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
                                 (c.any_repeated_letter ? detail::kAnyRepeat : 0));
-  recs_.push_back(r);
+  push_rec(r);
 }
 
 std::vector<uint32_t> CommandTable::with_flag(Flag f) const {
@@ -411,6 +433,12 @@ void CommandTable::append(CommandTable&& part) {
   for (const auto& [k, v] : part.long_words_) long_words_[k + base] = v;
   for (const auto& [k, v] : part.big_counts_) big_counts_[k + base] = v;
   tail_size_ += part.recs_.size();
+  if (!part.key_counts_.empty()) {
+    if (key_counts_.empty()) key_counts_.assign(part.key_counts_.size(), 0);
+    for (size_t k = 0; k < key_counts_.size(); ++k) key_counts_[k] += part.key_counts_[k];
+  }
+  fraction_keys_.insert(fraction_keys_.end(), part.fraction_keys_.begin(), part.fraction_keys_.end());
+  all_bits_ |= part.all_bits_;
   tails_.push_back(Tail{base, std::move(part.recs_)});
   part = CommandTable{};
   block_tail_.assign((size() >> 16) + 1, 0);
@@ -777,7 +805,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     r.fraction = c.fraction;
     r.bits = c.bits;
     r.param_count = c.params;
-    out_.commands.recs_.push_back(r);
+    out_.commands.push_rec(r);
     note_mode(detail::letter_of(c.bits), c.number, c.fraction);
   }
   detail::LineRec& r = next_line_rec();
@@ -1250,46 +1278,26 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
   for (unsigned j = 1; j < parts; ++j) join_part(pf, std::move(ps[j].out), first[j], first[j + 1]);
 }
 
-namespace {
-
-// Code keys: G0…G1023, then M0…M1023, then every T.
-constexpr uint16_t kTKey = 2048, kNoKey = 2049;
-uint16_t code_key(char letter, int32_t number) {
-  if (letter == 'T') return kTKey;
-  if (number < 0 || number >= 1024) return kNoKey;
-  return static_cast<uint16_t>((letter == 'M' ? 1024 : 0) + number);
-}
-
-}  // namespace
-
-// Sorts the commands by code (a counting sort: two sweeps of the records) and records which codes have a fraction.
+// Sorts the commands by code: a counting sort whose counts the parse kept (CommandTable::push_rec), so one sweep
+// of the records places them.
 void index_codes(ParsedFile& pf) {
-  const size_t n = pf.commands.size();
+  const CommandTable& t = pf.commands;
+  const size_t n = t.size();
   std::vector<uint32_t>& start = pf.code_start_;
   start.assign(kNoKey + 2, 0);
-  std::array<bool, kNoKey + 1> fraction{};
-  bool exponent = false, blank_colon = false, repeated = false;
-  uint8_t bits = 0;
-  pf.commands.each_rec([&](size_t, const detail::CommandRec& r) {
-    const uint16_t key = code_key(detail::letter_of(r.bits), r.number);
-    ++start[key + 1];
-    fraction[key] = fraction[key] || r.fraction >= 0;
-    bits |= r.bits;
-  });
-  exponent = bits & detail::kAnyExponent;
-  blank_colon = bits & detail::kAnyBlankColon;
-  repeated = bits & detail::kAnyRepeat;
-  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  if (!t.key_counts_.empty())
+    for (size_t k = 0; k <= kNoKey; ++k) start[k + 1] = start[k] + t.key_counts_[k];
   std::vector<uint32_t> at(start.begin(), start.end() - 1);
   pf.code_order_.resize(n);
-  pf.commands.each_rec([&](size_t i, const detail::CommandRec& r) {
+  t.each_rec([&](size_t i, const detail::CommandRec& r) {
     pf.code_order_[at[code_key(detail::letter_of(r.bits), r.number)]++] = static_cast<uint32_t>(i);
   });
-  for (uint16_t k = 0; k < kNoKey; ++k)
-    if (fraction[k]) pf.fraction_keys_.push_back(k);
-  pf.any_exponent = exponent;
-  pf.any_blank_before_colon = blank_colon;
-  pf.any_repeated_letter = repeated;
+  pf.fraction_keys_ = t.fraction_keys_;
+  std::sort(pf.fraction_keys_.begin(), pf.fraction_keys_.end());
+  pf.fraction_keys_.erase(std::unique(pf.fraction_keys_.begin(), pf.fraction_keys_.end()), pf.fraction_keys_.end());
+  pf.any_exponent = t.all_bits_ & detail::kAnyExponent;
+  pf.any_blank_before_colon = t.all_bits_ & detail::kAnyBlankColon;
+  pf.any_repeated_letter = t.all_bits_ & detail::kAnyRepeat;
 }
 
 CodeCommands ParsedFile::run(size_t key) const {
@@ -1345,7 +1353,10 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   }
   trace::mark("parse: lines");
   // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
-  run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) { k == 0 ? compute_blocks(pf) : index_codes(pf); });
+  run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) {
+    const trace::Scope time(k == 0 ? "blocks" : "code index");
+    k == 0 ? compute_blocks(pf) : index_codes(pf);
+  });
   return pf;
 }
 

@@ -302,6 +302,12 @@ class CommandTable {
   std::vector<Tail> tails_;
   size_t tail_size_ = 0;
   std::vector<uint32_t> block_tail_;  // per block of 64K commands: the last tail starting at or before it
+  void push_rec(const detail::CommandRec& r);
+  // Kept as records are pushed, for index_codes: commands per code key, the keys of fractional commands (with
+  // repeats), and the OR of every record's bits.
+  std::vector<uint32_t> key_counts_;
+  std::vector<uint16_t> fraction_keys_;
+  uint8_t all_bits_ = 0;
   std::map<uint32_t, uint32_t> long_words_;  // command -> word end, for words of 255 bytes or more
   std::map<uint32_t, uint32_t> big_counts_;  // command -> parameter count, for 255 or more
 };
