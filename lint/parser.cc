@@ -382,7 +382,7 @@ uint16_t code_key(char letter, int32_t number) {
 }  // namespace
 
 // Appends a record and counts its code for index_codes, which then needs no sweep of its own to size the runs.
-inline void CommandTable::push_rec(const detail::CommandRec& r) {
+RRFLINT_ALWAYS_INLINE inline void CommandTable::push_rec(const detail::CommandRec& r) {
   if (key_counts_.empty()) key_counts_.assign(kNoKey + 1, 0);
   const uint16_t key = code_key(detail::letter_of(r.bits), r.number);
   ++key_counts_[key];
@@ -518,10 +518,13 @@ class LineParser {
   void parse_commands(Line& line, uint32_t b, uint32_t e);
   bool count_params(Command& cmd, uint32_t& p, uint32_t e) const;
   void lex_params(Command& cmd, uint32_t& p, uint32_t e);
-  void check_expression(uint32_t b, uint32_t e, std::string_view what);
+  // `what` names the expression in a message: "the '<kw>' <role>", or "the <role>" without a keyword (built only
+  // for an error: most expressions are fine).
+  void check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role);
   void add_line(const Line& line, bool cut_by_del) {
     if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end))
       rich_->insert(next_line_);
+    if (!line.comment.empty()) comments_->insert(next_line_);
     detail::LineRec* r;
     if (in_place_) {
       r = &in_place_[next_line_];
@@ -537,15 +540,17 @@ class LineParser {
   ParsedFile& out_;
   Lexer lex_;
   LineSet* rich_ = &out_.rich_lines;  // the file's set (a part of a file writes to the whole file's)
+  LineSet* comments_ = &out_.comment_lines;  // likewise
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
 };
 
-void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what) {
+void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role) {
   // Parsed just far enough to know it is an expression: balanced brackets and closed strings.
   const std::string_view t = lex_.t;
+  auto what = [&] { return kw.empty() ? fmt::format("the {}", role) : fmt::format("the '{}' {}", kw, role); };
   std::string stack;
   for (uint32_t p = b; p < e; ++p) {
     const char c = t[p];
@@ -562,7 +567,7 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what)
     } else if (c == ')' || c == ']' || c == '}') {
       const char want = c == ')' ? '(' : c == ']' ? '[' : '{';
       if (stack.empty() || stack.back() != want) {
-        error(p, p + 1, fmt::format("unbalanced '{}' in {}", c, what));
+        error(p, p + 1, fmt::format("unbalanced '{}' in {}", c, what()));
         return;
       }
       stack.pop_back();
@@ -571,7 +576,7 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view what)
   if (!stack.empty()) {
     const char closer = stack.back() == '(' ? ')' : stack.back() == '[' ? ']' : '}';
     if (lex_.cut_by_semicolon(e, closer)) out_.semicolon_cuts.push_back(Span{b, e});
-    else error(b, e, fmt::format("unclosed '{}' in {}", stack.back(), what));
+    else error(b, e, fmt::format("unclosed '{}' in {}", stack.back(), what()));
   }
 }
 
@@ -808,6 +813,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     out_.commands.push_rec(r);
     note_mode(detail::letter_of(c.bits), c.number, c.fraction);
   }
+  if (code_len < len) comments_->insert(next_line_);
   detail::LineRec& r = next_line_rec();
   r.code_begin = b + lead;
   r.code_end = b + ce;
@@ -834,7 +840,7 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
     case MetaKind::Elif:
     case MetaKind::While:
       if (p >= e) error(line.code.begin, e, fmt::format("expected a condition after '{}'", kw));
-      else check_expression(p, e, fmt::format("the '{}' condition", kw));
+      else check_expression(p, e, kw, "condition");
       break;
     case MetaKind::Else:
       if (p < e) error(p, e, "unexpected characters after 'else' (use 'elif' for a condition)");
@@ -889,12 +895,12 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
         return;
       }
       line.meta_arg = Span{q, e};
-      check_expression(q, e, "the expression");
+      check_expression(q, e, "", "expression");
       break;
     }
     case MetaKind::Echo:
     case MetaKind::Abort:
-      if (p < e) check_expression(p, e, fmt::format("the '{}' arguments", kw));
+      if (p < e) check_expression(p, e, kw, "arguments");
       break;
     default:
       break;
@@ -1264,6 +1270,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
     lp.fast_lines = opts.fast_lines;
     lp.rich_ = &pf.rich_lines;
+    lp.comments_ = &pf.comment_lines;
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
   };
@@ -1272,6 +1279,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     if (ps[j].cnc_in != ps[j - 1].cnc_out) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
       pf.rich_lines.clear(first[j], first[j + 1]);
+      pf.comment_lines.clear(first[j], first[j + 1]);
       run(j);
     }
   }
@@ -1333,6 +1341,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   pf.source = &file;
   pf.lines.source_ = &file;
   pf.rich_lines.resize(file.line_count() + 1);  // NUL bytes add logical lines: insert() grows the set then
+  pf.comment_lines.resize(file.line_count() + 1);
   const bool any_nul = file.any_nul();
   const bool any_del = file.any_del();
   // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up

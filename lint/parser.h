@@ -272,6 +272,12 @@ class CommandTable {
     RepeatedLetter = detail::kAnyRepeat
   };
   std::vector<uint32_t> with_flag(Flag f) const;
+  /// Asks the processor to fetch command i's record (a pass in command order stays ahead of its loads).
+  void prefetch(size_t i) const {
+#if defined(__GNUC__)
+    if (i < size()) __builtin_prefetch(&rec(i));
+#endif
+  }
 
  private:
   friend class LineParser;
@@ -322,6 +328,11 @@ class LineTable {
   LineKind kind(size_t i) const { return static_cast<LineKind>(recs_[i].kind_meta & 7); }
   Span code(size_t i) const { return Span{recs_[i].code_begin, recs_[i].code_end}; }
   bool has_comment(size_t i) const { return recs_[i].kind_meta & 0x80; }
+  /// Line i's span (without its terminator) and stored length, likewise.
+  Span span(size_t i) const { return spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i]; }
+  uint32_t stored_length(size_t i) const {
+    return recs_[i].stored_length < 65535 ? recs_[i].stored_length : long_length(i);
+  }
   size_t size() const { return recs_.size(); }
   bool empty() const { return recs_.empty(); }
   DecodingIterator<LineTable, Line> begin() const { return {this, 0}; }
@@ -500,6 +511,8 @@ struct ParsedFile {
   /// The lines whose code holds a byte other than a letter, digit, blank, '.', '-', '+' or ':' (a quote, a brace,
   /// a parenthesis, an apostrophe …), in order. A rule that looks for such a byte walks these lines only.
   LineSet rich_lines;
+  /// The lines with a comment (LineTable::has_comment), in order: suppression comments are looked for only there.
+  LineSet comment_lines;
   bool mixed_indentation = false;
   // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
   bool any_exponent = false;
@@ -565,12 +578,12 @@ RRFLINT_ALWAYS_INLINE inline Line LineTable::operator[](size_t i) const {
   const detail::LineRec& r = recs_[i];
   const std::string_view t = source_->text();
   Line l;
-  l.span = spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i];
+  l.span = span(i);
   l.code = Span{r.code_begin, r.code_end};
   l.kind = static_cast<LineKind>(r.kind_meta & 7);
   l.meta = static_cast<MetaKind>((r.kind_meta >> 3) & 15);
   l.indent = r.indent < 65535 ? r.indent : long_indent(i);
-  l.stored_length = r.stored_length < 65535 ? r.stored_length : long_length(i);
+  l.stored_length = stored_length(i);
   l.command_count = r.command_count < 65535 ? r.command_count : big_count(i);
   if (l.kind == LineKind::Meta) {
     l.meta_arg = metas_[r.first].arg;

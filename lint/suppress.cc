@@ -193,8 +193,10 @@ std::vector<Directive> parse_directives(const ParsedFile& pf) {
   std::vector<Directive> out;
   const SourceFile& f = *pf.source;
   if (f.line_count() == 0) return out;
-  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
-    if (!pf.lines.has_comment(li)) continue;  // from the line's record: most lines have none
+  for (const uint32_t li : pf.comment_lines) {  // most lines have none
+    // A directive has a ':' after the code: most comments are prose without one (read before decoding).
+    const Span ls = pf.lines.span(li);
+    if (!span_has(f.text(), Span{std::max(ls.begin, pf.lines.code(li).end), ls.end}, ':')) continue;
     if (auto d = parse_comment(pf, pf.lines[li])) out.push_back(std::move(*d));
   }
   if (out.empty()) return out;

@@ -39,9 +39,12 @@ commands where the command allows it.
 
 void check(const FileContext& cx, Sink& out) {
   const int limit = max_line_length(cx.target.version);
-  for (const Line& line : cx.parsed().lines) {
-    if (line.kind == LineKind::Comment || line.kind == LineKind::Blank) continue;
-    if (line.stored_length <= static_cast<uint32_t>(limit)) continue;
+  const LineTable& lines = cx.parsed().lines;
+  for (size_t li = 0; li < lines.size(); ++li) {
+    // From the records: most lines are short, and only the long ones are decoded.
+    if (lines.kind(li) == LineKind::Comment || lines.kind(li) == LineKind::Blank) continue;
+    if (lines.stored_length(li) <= static_cast<uint32_t>(limit)) continue;
+    const Line line = lines[li];
     const bool aborts = cx.target.version >= Version(3, 1, 0, 0, 0);
     Span s{line.code.begin + static_cast<uint32_t>(limit), line.code.end};
     if (s.begin >= s.end) s = line.code;

@@ -68,6 +68,9 @@ inline std::string parse_dump(const ParsedFile& pf) {
   for (const ParseError& e : pf.errors) out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
   for (Span s : pf.semicolon_cuts) out += "S " + std::to_string(s.begin) + '-' + std::to_string(s.end) + '\n';
   for (uint32_t l : pf.rich_lines) out += "R " + std::to_string(l) + '\n';
+  for (uint32_t l : pf.comment_lines) out += "C " + std::to_string(l) + '\n';
+  for (uint32_t l = 0; l < pf.lines.size(); ++l)  // the set holds exactly the lines with a comment
+    if (pf.lines.has_comment(l) != pf.comment_lines.contains(l)) out += "comment set differs at " + std::to_string(l) + '\n';
   for (bool b : {pf.mixed_indentation, pf.any_exponent, pf.any_blank_before_colon, pf.any_repeated_letter,
                  pf.any_line_number, pf.any_tab_indent})
     out += b ? '1' : '0';

@@ -478,6 +478,10 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     CHECK(std::vector<uint32_t>(r.pf.rich_lines.begin(), r.pf.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
     CHECK(r.pf.rich_lines.contains(7));
     CHECK_FALSE(r.pf.rich_lines.contains(6));
+    // The lines with a comment, likewise: after code, alone at column 0, and indented (a blank line to RRF).
+    CHECK(std::vector<uint32_t>(r.pf.comment_lines.begin(), r.pf.comment_lines.end()) == std::vector<uint32_t>{0, 5});
+    Parsed c = parse_text("G1 X1 ; a\n  ; b\nM83\n; c\nG1 X2;d\n", ParseOptions{.fast_lines = fast});
+    CHECK(std::vector<uint32_t>(c.pf.comment_lines.begin(), c.pf.comment_lines.end()) == std::vector<uint32_t>{0, 1, 3, 4});
   }
   // And every fixture.
   size_t files = 0;
