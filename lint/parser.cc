@@ -522,9 +522,12 @@ class LineParser {
   // for an error: most expressions are fine).
   void check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role);
   void add_line(const Line& line, bool cut_by_del) {
-    if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end))
+    if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end)) {
       rich_->insert(next_line_);
-    if (!line.comment.empty()) comments_->insert(next_line_);
+      if (line.kind == LineKind::Commands && span_has(lex_.t, line.code, '(')) parens_->insert(next_line_);
+      if (span_has(lex_.t, line.code, '\'')) apostrophes_->insert(next_line_);
+    }
+    if (span_has(lex_.t, line.comment, ':')) colon_comments_->insert(next_line_);
     detail::LineRec* r;
     if (in_place_) {
       r = &in_place_[next_line_];
@@ -540,7 +543,9 @@ class LineParser {
   ParsedFile& out_;
   Lexer lex_;
   LineSet* rich_ = &out_.rich_lines;  // the file's set (a part of a file writes to the whole file's)
-  LineSet* comments_ = &out_.comment_lines;  // likewise
+  LineSet* parens_ = &out_.paren_lines;  // likewise
+  LineSet* apostrophes_ = &out_.apostrophe_lines;
+  LineSet* colon_comments_ = &out_.colon_comment_lines;
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
@@ -813,7 +818,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     out_.commands.push_rec(r);
     note_mode(detail::letter_of(c.bits), c.number, c.fraction);
   }
-  if (code_len < len) comments_->insert(next_line_);
+  if (colon & in_line & ~code) colon_comments_->insert(next_line_);  // a ':' in the comment
   detail::LineRec& r = next_line_rec();
   r.code_begin = b + lead;
   r.code_end = b + ce;
@@ -1270,7 +1275,9 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
     lp.fast_lines = opts.fast_lines;
     lp.rich_ = &pf.rich_lines;
-    lp.comments_ = &pf.comment_lines;
+    lp.parens_ = &pf.paren_lines;
+    lp.apostrophes_ = &pf.apostrophe_lines;
+    lp.colon_comments_ = &pf.colon_comment_lines;
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
   };
@@ -1279,7 +1286,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     if (ps[j].cnc_in != ps[j - 1].cnc_out) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
       pf.rich_lines.clear(first[j], first[j + 1]);
-      pf.comment_lines.clear(first[j], first[j + 1]);
+      for (LineSet* set : {&pf.paren_lines, &pf.apostrophe_lines, &pf.colon_comment_lines}) set->clear(first[j], first[j + 1]);
       run(j);
     }
   }
@@ -1341,7 +1348,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   pf.source = &file;
   pf.lines.source_ = &file;
   pf.rich_lines.resize(file.line_count() + 1);  // NUL bytes add logical lines: insert() grows the set then
-  pf.comment_lines.resize(file.line_count() + 1);
+  for (LineSet* set : {&pf.paren_lines, &pf.apostrophe_lines, &pf.colon_comment_lines}) set->resize(file.line_count() + 1);
   const bool any_nul = file.any_nul();
   const bool any_del = file.any_del();
   // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up

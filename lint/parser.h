@@ -511,8 +511,11 @@ struct ParsedFile {
   /// The lines whose code holds a byte other than a letter, digit, blank, '.', '-', '+' or ':' (a quote, a brace,
   /// a parenthesis, an apostrophe …), in order. A rule that looks for such a byte walks these lines only.
   LineSet rich_lines;
-  /// The lines with a comment (LineTable::has_comment), in order: suppression comments are looked for only there.
-  LineSet comment_lines;
+  /// Of those, the command lines (LineKind::Commands) whose code holds a '(', and the lines whose code holds an
+  /// apostrophe: the rules about them walk these only.
+  LineSet paren_lines, apostrophe_lines;
+  /// The lines whose comment holds a ':': a suppression comment (`; rrflint: ...`) can stand only there.
+  LineSet colon_comment_lines;
   bool mixed_indentation = false;
   // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
   bool any_exponent = false;

@@ -193,10 +193,7 @@ std::vector<Directive> parse_directives(const ParsedFile& pf) {
   std::vector<Directive> out;
   const SourceFile& f = *pf.source;
   if (f.line_count() == 0) return out;
-  for (const uint32_t li : pf.comment_lines) {  // most lines have none
-    // A directive has a ':' after the code: most comments are prose without one (read before decoding).
-    const Span ls = pf.lines.span(li);
-    if (!span_has(f.text(), Span{std::max(ls.begin, pf.lines.code(li).end), ls.end}, ':')) continue;
+  for (const uint32_t li : pf.colon_comment_lines) {  // a directive has a ':'; most comments are prose without one
     if (auto d = parse_comment(pf, pf.lines[li])) out.push_back(std::move(*d));
   }
   if (out.empty()) return out;

@@ -94,9 +94,9 @@ void scan(const FileContext& cx, Span s, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  for (const uint32_t li : pf.rich_lines) {  // only these can hold a quote
-    // No string, or no apostrophe, on this line: read from its record, without decoding the line.
-    if (!lex::contains(t, pf.lines.code(li), '\'') || !lex::contains(t, pf.lines.code(li), '"')) continue;
+  for (const uint32_t li : pf.apostrophe_lines) {
+    // No string on this line: read from its record, without decoding the line.
+    if (!lex::contains(t, pf.lines.code(li), '"')) continue;
     const Line& line = pf.lines[li];
     if (line.kind == LineKind::Meta) {
       scan(cx, line.code, out);

@@ -478,10 +478,14 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     CHECK(std::vector<uint32_t>(r.pf.rich_lines.begin(), r.pf.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
     CHECK(r.pf.rich_lines.contains(7));
     CHECK_FALSE(r.pf.rich_lines.contains(6));
-    // The lines with a comment, likewise: after code, alone at column 0, and indented (a blank line to RRF).
-    CHECK(std::vector<uint32_t>(r.pf.comment_lines.begin(), r.pf.comment_lines.end()) == std::vector<uint32_t>{0, 5});
-    Parsed c = parse_text("G1 X1 ; a\n  ; b\nM83\n; c\nG1 X2;d\n", ParseOptions{.fast_lines = fast});
-    CHECK(std::vector<uint32_t>(c.pf.comment_lines.begin(), c.pf.comment_lines.end()) == std::vector<uint32_t>{0, 1, 3, 4});
+    CHECK(std::vector<uint32_t>(r.pf.paren_lines.begin(), r.pf.paren_lines.end()) == std::vector<uint32_t>{3});
+    CHECK(std::vector<uint32_t>(r.pf.apostrophe_lines.begin(), r.pf.apostrophe_lines.end()) == std::vector<uint32_t>{4});
+    // The lines whose comment holds a ':': after code, alone at column 0, indented (a blank line to RRF), after a
+    // checksum; not a ':' in the code.
+    Parsed c = parse_text("G1 X1 ; a: b\n  ; b:\nM83 ; c\n; c:\nG1 X2;d:\nG1 X1:2 ; e\nN1 G1 X1*12 ; f:\nM117 \"a:b\"\n",
+                          ParseOptions{.fast_lines = fast});
+    CHECK(std::vector<uint32_t>(c.pf.colon_comment_lines.begin(), c.pf.colon_comment_lines.end()) ==
+          std::vector<uint32_t>{0, 1, 3, 4, 6});
   }
   // And every fixture.
   size_t files = 0;
