@@ -192,9 +192,8 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
         mb->decide(s, id, node);
         // A command's code is read once, from its record: most commands wake no rule and change nothing.
         const bool command = node.kind == NodeKind::Command;
-        const CommandTable* commands = command ? &m.unit(node.unit).parsed.commands : nullptr;
-        if (command) commands->prefetch(node.index + 32);
-        const CommandTable::Code code = command ? commands->code(node.index) : CommandTable::Code{};
+        const CommandTable::Code code =
+            command ? m.unit(node.unit).parsed.commands.code(node.index) : CommandTable::Code{};
         const auto& node_rules = command ? dispatch.rules_for(code) : dispatch.rules_for_other();
         if (!node_rules.empty()) {
           if (const int runs = mb->runs(id); runs > 0) {

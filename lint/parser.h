@@ -272,12 +272,6 @@ class CommandTable {
     RepeatedLetter = detail::kAnyRepeat
   };
   std::vector<uint32_t> with_flag(Flag f) const;
-  /// Asks the processor to fetch command i's record (a pass in command order stays ahead of its loads).
-  void prefetch(size_t i) const {
-#if defined(__GNUC__)
-    if (i < size()) __builtin_prefetch(&rec(i));
-#endif
-  }
 
  private:
   friend class LineParser;
