@@ -122,6 +122,9 @@ AxisMap read_map(Cx& x, char letter, int default_axis, bool& bad, bool& present)
   return m;
 }
 
+// Is the list exactly "-1" (M563 D-1 H-1 deletes a tool)?
+bool just_minus_one(const std::vector<int64_t>& v) { return v.size() == 1 && v[0] == -1; }
+
 void do_m563(Cx& x) {
   MachineState& s = x.s;
   auto P = get_int(x.pf, x.c, 'P');
@@ -138,7 +141,7 @@ void do_m563(Cx& x) {
   auto D = get_int_list(x.pf, x.c, 'D');
   auto H = get_int_list(x.pf, x.c, 'H');
   // Deleting: D-1 H-1.
-  if (D.known() && H.known() && D.value == std::vector<int64_t>{-1} && H.value == std::vector<int64_t>{-1} &&
+  if (D.known() && H.known() && just_minus_one(D.value) && just_minus_one(H.value) &&
       !x.pf.find(x.c, 'R')) {
     if (x.maybe) {
       if (auto it = s.tools.find(n); it != s.tools.end()) it->second.maybe = true;
@@ -181,7 +184,7 @@ void do_m563(Cx& x) {
       if (d < 0 || (s.extruders_known && d >= s.extruders)) failed = true;
   if (H.known())
     for (int64_t h : H.value)
-      if (h < 0 && !(D.known() && D.value == std::vector<int64_t>{-1} && h == -1)) failed = true;
+      if (h < 0 && !(D.known() && just_minus_one(D.value) && h == -1)) failed = true;
   if (failed && !x.maybe) {
     s.failed_tools[n] = x.id;
     return;
@@ -189,7 +192,7 @@ void do_m563(Cx& x) {
   s.failed_tools.erase(n);
   for (int64_t h : t.heaters) install_tool_heater_defaults(s, static_cast<int>(h), x.id);
   if (x.maybe && s.tools.count(n)) t.maybe = true;
-  s.tools[n] = t;
+  s.tools[n] = std::move(t);
 }
 
 int tool_for(Cx& x, bool& known) {

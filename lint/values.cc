@@ -78,40 +78,11 @@ bool parse_driver(std::string_view s, DriverId& out) {
   return true;
 }
 
-template <class T, class F>
-Val<std::vector<T>> get_list(const ParsedFile& pf, const Command& c, char letter, F parse_one) {
-  Val<std::vector<T>> v;
-  ParamRef p = pf.find(c, letter);
-  if (!p) return v;
-  v.param = p;
-  if (is_unknown_value(*p)) {
-    v.state = VState::Unknown;
-    return v;
-  }
-  if (p->kind != ValueKind::Number && p->kind != ValueKind::List) {
-    v.state = VState::Bad;
-    return v;
-  }
-  v.state = VState::Known;
-  for (Span s : list_items(pf, *p)) {
-    T item{};
-    if (!parse_one(pf.text(s), item)) {
-      v.state = VState::Bad;
-      return v;
-    }
-    v.value.push_back(item);
-  }
-  return v;
-}
-
-}  // namespace
-
-std::string DriverId::str() const { return explicit_board ? fmt::format("{}.{}", board, driver) : fmt::format("{}", driver); }
-
-std::vector<Span> list_items(const ParsedFile& pf, const Param& p) {
-  // RRF reads a value, then continues only if the very next character is ':'. Blanks after a ':' are
-  // skipped by number parsing; a blank before a ':' ends the list (rrf-semantics §1.9).
-  std::vector<Span> items;
+// Calls f(item) for each item of a list value, as RRF reads them: a value, then on only if the very next
+// character is ':'. Blanks after a ':' are skipped by number parsing; a blank before a ':' ends the list
+// (rrf-semantics §1.9). f returns false to stop.
+template <class F>
+void each_list_item(const ParsedFile& pf, const Param& p, F f) {
   std::string_view t = pf.source->text();
   const uint32_t e = p.value.end;
   uint32_t k = p.value.begin;
@@ -135,13 +106,53 @@ std::vector<Span> list_items(const ParsedFile& pf, const Param& p) {
       }
       ++k;
     }
-    items.push_back(Span{ib, k});
+    if (!f(Span{ib, k})) return;
     if (k < e && t[k] == ':') {
       ++k;
       continue;
     }
-    return items;
+    return;
   }
+}
+
+template <class T, class F>
+Val<std::vector<T>> get_list(const ParsedFile& pf, const Command& c, char letter, F parse_one) {
+  Val<std::vector<T>> v;
+  ParamRef p = pf.find(c, letter);
+  if (!p) return v;
+  v.param = p;
+  if (is_unknown_value(*p)) {
+    v.state = VState::Unknown;
+    return v;
+  }
+  if (p->kind != ValueKind::Number && p->kind != ValueKind::List) {
+    v.state = VState::Bad;
+    return v;
+  }
+  v.state = VState::Known;
+  each_list_item(pf, *p, [&](Span s) {
+    T item{};
+    if (!parse_one(pf.text(s), item)) {
+      v.state = VState::Bad;
+      return false;
+    }
+    v.value.push_back(item);
+    return true;
+  });
+  return v;
+}
+
+}  // namespace
+
+std::string DriverId::str() const { return explicit_board ? fmt::format("{}.{}", board, driver) : fmt::format("{}", driver); }
+
+std::vector<Span> list_items(const ParsedFile& pf, const Param& p) {
+  std::vector<Span> items;
+  each_list_item(pf, p, [&](Span s) {
+    items.push_back(s);
+    return true;
+  });
+  return items;
 }
 
 Val<double> get_float(const ParsedFile& pf, const Command& c, char letter) {
