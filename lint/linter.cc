@@ -277,7 +277,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
                     r->check_file(FileContext{m, m.unit(i), res.target, options}, sinks[k]);
                   return;
                 }
-                if (k + 1 == sinks.size()) trace::mark("last task started");
+                trace::mark("last task started");  // this branch is the last task
                 for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
                   file_rules(m.unit(i), sinks[k], false);
                   if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed));

@@ -46,7 +46,6 @@ std::vector<bool> code_lines(const ParsedFile& pf) {
 // Parses the directive in one comment, if it has one. `comment` starts at its ';'.
 std::optional<Directive> parse_comment(const ParsedFile& pf, const Line& line) {
   const std::string_view text = pf.source->text();
-  if (!span_has(text, line.comment, ':')) return std::nullopt;  // most comments: prose, no "rrflint:"
   const uint32_t end = line.comment.end;
   for (uint32_t semi = line.comment.begin; semi < end; ++semi) {
     const void* next = std::memchr(text.data() + semi, ';', end - semi);

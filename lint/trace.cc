@@ -10,23 +10,17 @@ namespace rrflint::trace {
 
 namespace {
 const auto start = std::chrono::steady_clock::now();
-const bool on = std::getenv("RRFLINT_TRACE") != nullptr;
 }  // namespace
 
-bool enabled() { return on; }
+const bool kEnabled = std::getenv("RRFLINT_TRACE") != nullptr;
 
-namespace {
-double now_ms() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); }
-}  // namespace
-
-Scope::Scope(const char* what, std::string_view detail) : what_(what), detail_(detail) {
-  if (on) start_ = now_ms();
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-Scope::~Scope() {
-  if (on)
-    std::fprintf(stderr, "took  %8.2f ms  %s %.*s\n", now_ms() - start_, what_, static_cast<int>(detail_.size()),
-                 detail_.data());
+void Scope::report() const {
+  std::fprintf(stderr, "took  %8.2f ms  %s %.*s\n", now_ms() - start_, what_, static_cast<int>(detail_.size()),
+               detail_.data());
 }
 
 void mark_slow(const char* what) {

@@ -6,21 +6,28 @@
 
 namespace rrflint::trace {
 
-bool enabled();
+extern const bool kEnabled;  // RRFLINT_TRACE is set
+inline bool enabled() { return kEnabled; }
+double now_ms();  // since the program started
 void mark_slow(const char* what);
 inline void mark(const char* what) {
-  if (enabled()) mark_slow(what);
+  if (kEnabled) mark_slow(what);
 }
 
 /// Prints how long the scope took, as "took <ms> ms  <what> <detail>", when tracing is on.
 class Scope {
  public:
-  Scope(const char* what, std::string_view detail = {});
-  ~Scope();
+  Scope(const char* what, std::string_view detail = {}) : what_(what), detail_(detail) {
+    if (kEnabled) start_ = now_ms();
+  }
+  ~Scope() {
+    if (kEnabled) report();
+  }
   Scope(const Scope&) = delete;
   Scope& operator=(const Scope&) = delete;
 
  private:
+  void report() const;
   const char* what_;
   std::string_view detail_;
   double start_ = 0;

@@ -75,11 +75,11 @@ void check(const FileContext& cx, Sink& out) {
   if (switches.empty() && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
   size_t next_switch = 0;
-  for (const uint32_t li : pf.paren_lines) {
+  for (const uint32_t li : pf.paren_lines) {  // command lines whose code holds a '('
     // The mode switches of earlier lines (a switch applies from the next line).
     for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line < li; ++next_switch)
       cnc = pf.commands[switches[next_switch]].number == 453;
-    if (pf.lines.kind(li) == LineKind::Commands && !cnc && lex::contains(t, pf.lines.code(li), '(')) {
+    if (!cnc) {
       const Line& line = pf.lines[li];
       std::vector<Span> groups;
       lex::for_each_plain(t, line.code, [&](uint32_t k) {
