@@ -23,19 +23,32 @@ std::string_view call_kind_name(CallKind k) {
   return "?";
 }
 
-void NodeTable::push_back(const Node& n) {
-  if (n.kind == NodeKind::Command && n.index < kMaybe && n.call_site == kNoNode) {
-    if (frames_.empty() || frames_.back().call != n.call || frames_.back().depth != n.depth ||
-        frames_.back().unit != n.unit || frames_.back().enter != n.enter)
-      frames_.push_back(Frame{n.call, n.depth, n.unit, n.enter});
-    recs_.push_back(Rec{static_cast<uint32_t>(frames_.size() - 1), n.index | (n.maybe ? kMaybe : 0)});
-    return;
-  }
-  full_.push_back(n);
-  recs_.push_back(Rec{static_cast<uint32_t>(full_.size() - 1), kFull});
+void NodeTable::grow(size_t n) {
+  size_ += n;
+  while ((block_runs_.size() << kBlockBits) < size_) block_runs_.push_back(static_cast<uint32_t>(runs_.size() - 1));
 }
 
-void NodeTable::reserve(size_t n) { reserve_huge(recs_, n); }
+void NodeTable::push_back(const Node& n) {
+  if (n.kind == NodeKind::Command && n.call_site == kNoNode) return push_commands(n, 1);
+  runs_.push_back(Run{static_cast<NodeId>(size_), kFull, static_cast<uint32_t>(full_.size())});
+  full_.push_back(n);
+  grow(1);
+}
+
+void NodeTable::push_commands(const Node& n, uint32_t count) {
+  if (count == 0) return;
+  const Frame f{n.call, n.maybe, n.depth, n.unit, n.enter};
+  const auto same = [&](const Frame& g) {
+    return g.call == f.call && g.maybe == f.maybe && g.depth == f.depth && g.unit == f.unit && g.enter == f.enter;
+  };
+  // The same frame as the last run, and the next command of it: the run grows.
+  if (!runs_.empty() && runs_.back().frame != kFull && same(frames_[runs_.back().frame]) &&
+      runs_.back().index + (size_ - runs_.back().first) == n.index)
+    return grow(count);
+  if (frames_.empty() || !same(frames_.back())) frames_.push_back(f);
+  runs_.push_back(Run{static_cast<NodeId>(size_), static_cast<uint32_t>(frames_.size() - 1), n.index});
+  grow(count);
+}
 
 namespace {
 
@@ -59,6 +72,8 @@ class Builder {
             uint32_t tool = 0);
   void tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth);
   const FileUnit* tool_macro(std::string_view kind, int tool);
+  /// The commands of a file that the graph acts on (T, M98, M501, M505, no fraction), in order; found once a file.
+  const std::vector<uint32_t>& acting_commands(const FileUnit& u);
 
   Machine& m_;
   const GraphOptions& o_;
@@ -66,8 +81,10 @@ class Builder {
   std::string sys_dir_;
   std::vector<uint32_t> stack_;  // units currently running (cycle detection)
   std::set<uint32_t> reached_;   // units run by the boot sequence
+  bool booting_ = false;         // run_file is running the boot sequence: record the units it reaches
   int current_tool_ = -1;        // -1 none, -2 unknown
   std::unordered_map<uint64_t, std::optional<std::string>> m98_paths_;  // (unit, command) -> M98 P, if known
+  std::unordered_map<uint32_t, std::vector<uint32_t>> acting_;          // unit -> acting_commands
 };
 
 void Builder::call(const std::string& name, CallKind kind, NodeId site, bool maybe, uint16_t depth, bool report_missing,
@@ -109,6 +126,18 @@ const FileUnit* Builder::tool_macro(std::string_view kind, int tool) {
   return nullptr;
 }
 
+const std::vector<uint32_t>& Builder::acting_commands(const FileUnit& u) {
+  auto [it, fresh] = acting_.try_emplace(u.index);
+  if (!fresh) return it->second;
+  const ParsedFile& pf = u.parsed;
+  std::vector<uint32_t>& out = it->second;
+  for (const auto& [letter, number] : {std::pair{'T', -1}, {'M', 98}, {'M', 501}, {'M', 505}})
+    for (uint32_t i : pf.with_code(letter, number))
+      if (pf.commands.code(i).fraction < 0) out.push_back(i);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth) {
   const ParsedFile& pf = u.parsed;
   int bits = 7;
@@ -146,45 +175,63 @@ void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool
 void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, bool maybe, uint16_t depth,
                        uint32_t tool) {
   if (full()) return;
+  if (booting_) reached_.insert(u.index);
   const NodeId enter = push(Node{NodeKind::Enter, call_kind, maybe, depth, u.index, tool,
                                  call_site == kNoNode ? kNoNode : g_.nodes[call_site].enter, call_site});
   stack_.push_back(u.index);
   const ParsedFile& pf = u.parsed;
-  for (uint32_t ci = 0; ci < pf.commands.size(); ++ci) {
-    if (full()) break;
-    const CommandTable::Code code = pf.commands.code(ci);
-    const bool m = maybe || pf.lines.in_block(code.line);
-    const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode});
-    // Most commands run nothing: their code is read from the record, and only these are decoded.
-    if (code.fraction >= 0) continue;
+  // The commands between those the graph acts on are pushed a stretch at a time, cut where a block begins or ends.
+  const std::vector<uint32_t>& acts = acting_commands(u);
+  const auto& blocks = pf.block_commands;
+  auto block = blocks.begin();
+  uint32_t ci = 0;  // the next command to push
+  auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
+    while (ci < end) {
+      while (block != blocks.end() && block->second <= ci) ++block;
+      const bool in = block != blocks.end() && block->first <= ci;
+      const uint32_t stop = std::min(end, in ? block->second : block != blocks.end() ? block->first : end);
+      const size_t room = o_.max_nodes - std::min(o_.max_nodes, g_.nodes.size());
+      const auto n = static_cast<uint32_t>(std::min<size_t>(stop - ci, room));
+      g_.nodes.push_commands(Node{NodeKind::Command, call_kind, maybe || in, depth, u.index, ci, enter, kNoNode}, n);
+      ci += n;
+      if (ci < stop) {
+        g_.truncated = true;
+        return false;
+      }
+    }
+    return true;
+  };
+  for (const uint32_t a : acts) {
+    if (!push_until(a) || full()) break;
+    const bool m = maybe || pf.lines.in_block(pf.commands.code(a).line);
+    const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, a, enter, kNoNode});
+    ++ci;
+    const CommandTable::Code code = pf.commands.code(a);
     if (code.letter == 'T') {
-      tool_change(u, pf.commands[ci], id, m, depth);
-    } else if (code.letter == 'M' && code.number == 98) {
+      tool_change(u, pf.commands[a], id, m, depth);
+    } else if (code.number == 98) {
       // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.
-      auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | ci);
+      auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | a);
       if (fresh) {
-        auto p = get_string(pf, pf.commands[ci], 'P');
+        auto p = get_string(pf, pf.commands[a], 'P');
         if (p.known()) it->second = std::move(p.value);
       }
       if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
-    } else if (code.letter == 'M' && code.number == 501) {
+    } else if (code.number == 501) {
       call("config-override.g", CallKind::M501, id, m, depth, true);
-    } else if (code.letter == 'M' && code.number == 505) {
-      auto p = get_string(pf, pf.commands[ci], 'P');
+    } else {  // M505
+      auto p = get_string(pf, pf.commands[a], 'P');
       if (p.known() && !m) {
         if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
       }
     }
   }
+  if (!g_.truncated && !full()) push_until(static_cast<uint32_t>(pf.commands.size()));
   stack_.pop_back();
   push(Node{NodeKind::Leave, call_kind, maybe, depth, u.index, tool, enter, call_site});
 }
 
 Graph Builder::build() {
-  // About one node per command of the files loaded so far: no copy while the table grows on a large file.
-  size_t commands = 0;
-  for (uint32_t i = 0; i < m_.unit_count(); ++i) commands += m_.unit(i).parsed.commands.size();
-  g_.nodes.reserve(commands + 64);
   // Boot: config.g (fallback config.g.bak), then runonce.g.
   const FileUnit* config = m_.load(o_.sys_dir + "/config.g");
   if (!config) config = m_.load(o_.sys_dir + "/config.g.bak");
@@ -193,14 +240,15 @@ Graph Builder::build() {
     seg.begin = 0;
     seg.unit = config->index;
     seg.boot = true;
+    booting_ = true;
     run_file(*config, CallKind::Boot, kNoNode, false, 1);
     if (const FileUnit* ro = m_.load(sys_dir_ + "/runonce.g")) {
       if (std::find(stack_.begin(), stack_.end(), ro->index) == stack_.end())
         run_file(*ro, CallKind::RunOnce, kNoNode, false, 1);
     }
+    booting_ = false;
     seg.end = static_cast<NodeId>(g_.nodes.size());
     g_.segments.push_back(seg);
-    for (NodeId i = seg.begin; i < seg.end; ++i) reached_.insert(g_.nodes[i].unit);
   }
   if (!o_.include_entries) return std::move(g_);
   for (const std::string& path : machine_files(m_.reader(), o_.sys_dir)) {

@@ -6,6 +6,7 @@
 // machine state (rrf-semantics §2.9, §4).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,39 +53,96 @@ struct Segment {
   bool boot = false;          // the boot sequence (config.g …) rather than a standalone entry
 };
 
-/// The nodes of a graph, in execution order. A command node is stored in 8 bytes (its command index and the
-/// file run it belongs to); elements are decoded into `Node` values on access, so bind them as `const Node&`
-/// and keep NodeIds, not pointers.
+/// The nodes of a graph, in execution order. Command nodes are stored as runs: a stretch of consecutive commands of
+/// one file run that share their `maybe` is one 12-byte entry, however long (a 100 MB config.g with no blocks is a
+/// handful of runs). Other nodes are stored whole. Elements are decoded into `Node` values on access, so bind them
+/// as `const Node&` and keep NodeIds, not pointers. Access by id finds the run through a table of the run at every
+/// 4096th id, then a search among the runs of that stretch (one step in practice).
 class NodeTable {
  public:
-  Node operator[](NodeId id) const {
-    const Rec& r = recs_[id];
-    if (r.b == kFull) return full_[r.a];
-    const Frame& f = frames_[r.a];
-    return Node{NodeKind::Command, f.call, (r.b & kMaybe) != 0, f.depth, f.unit, r.b & ~kMaybe, f.enter, kNoNode};
-  }
-  size_t size() const { return recs_.size(); }
-  bool empty() const { return recs_.empty(); }
+  Node operator[](NodeId id) const { return decode(run_of(id), id); }
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
   DecodingIterator<NodeTable, Node> begin() const { return {this, 0}; }
   DecodingIterator<NodeTable, Node> end() const { return {this, size()}; }
   void push_back(const Node& n);
-  void reserve(size_t n);
+  /// Appends the command nodes of commands [n.index, n.index + count) of one file run, all like `n` (its kind is
+  /// Command, its call_site kNoNode).
+  void push_commands(const Node& n, uint32_t count);
+
+  /// A stretch of nodes [begin, end) that decode alike: a run of command nodes (`node` is the first; the others
+  /// differ only in `index`, one more each) or one other node. stretch(id) is the one holding `id`.
+  struct Stretch {
+    NodeId begin, end;
+    Node node;
+  };
+  Stretch stretch(NodeId id) const {
+    const size_t r = run_of(id);
+    const NodeId end = r + 1 < runs_.size() ? runs_[r + 1].first : static_cast<NodeId>(size_);
+    return Stretch{runs_[r].first, end, decode(r, runs_[r].first)};
+  }
+  /// The first node of [from, to) for which f(id, node) holds, visiting them in order (a run at a time, with no
+  /// search per node), or kNoNode.
+  template <class F>
+  NodeId find_if(NodeId from, NodeId to, F f) const {
+    to = std::min<NodeId>(to, static_cast<NodeId>(size_));
+    if (from >= to) return kNoNode;
+    for (size_t r = run_of(from); r < runs_.size() && runs_[r].first < to; ++r) {
+      const NodeId end = std::min<NodeId>(to, r + 1 < runs_.size() ? runs_[r + 1].first : static_cast<NodeId>(size_));
+      NodeId id = std::max(from, runs_[r].first);
+      Node n = decode(r, id);
+      for (; id < end; ++id, ++n.index)
+        if (f(id, static_cast<const Node&>(n))) return id;
+    }
+    return kNoNode;
+  }
+  /// How many entries the table keeps (tests and traces: runs and whole nodes).
+  size_t entries() const { return runs_.size(); }
 
  private:
-  static constexpr uint32_t kFull = UINT32_MAX, kMaybe = 1u << 31;
-  struct Rec {
-    uint32_t a;  // command: the frame; otherwise an index into full_
-    uint32_t b;  // command: index | kMaybe; otherwise kFull
+  static constexpr uint32_t kFull = UINT32_MAX;
+  static constexpr unsigned kBlockBits = 12;
+  struct Run {
+    NodeId first;    // the id of its first node
+    uint32_t frame;  // command nodes: the frame; kFull: one node, stored whole
+    uint32_t index;  // command nodes: the first command's index; kFull: the index into full_
   };
   struct Frame {  // what the command nodes of one stretch of a file run share
     CallKind call;
+    bool maybe;
     uint16_t depth;
     uint32_t unit;
     NodeId enter;
   };
-  std::vector<Rec> recs_;
+  size_t run_of(NodeId id) const {
+    const size_t b = id >> kBlockBits;
+    size_t lo = block_runs_[b];
+    const size_t hi = b + 1 < block_runs_.size() ? block_runs_[b + 1] : runs_.size() - 1;
+    // The last run in [lo, hi] that starts at or before id.
+    size_t count = hi - lo;
+    while (count > 0) {
+      const size_t half = (count + 1) / 2;
+      if (runs_[lo + half].first <= id) {
+        lo += half;
+        count -= half;
+      } else {
+        count = half - 1;
+      }
+    }
+    return lo;
+  }
+  Node decode(size_t r, NodeId id) const {
+    const Run& run = runs_[r];
+    if (run.frame == kFull) return full_[run.index];
+    const Frame& f = frames_[run.frame];
+    return Node{NodeKind::Command, f.call, f.maybe, f.depth, f.unit, run.index + (id - run.first), f.enter, kNoNode};
+  }
+  void grow(size_t n);  // size_ += n, keeping block_runs_
+  std::vector<Run> runs_;
   std::vector<Frame> frames_;
   std::vector<Node> full_;
+  std::vector<uint32_t> block_runs_;  // the run holding id k << kBlockBits
+  size_t size_ = 0;
 };
 
 struct Graph {

@@ -187,21 +187,36 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
     for (const Segment& seg : res.graph.segments) {
       MachineState s = seg.boot ? mb->initial_state() : boot_end;
       if (!seg.boot && !have_boot) s.unknown_baseline = true;
-      for (NodeId id = seg.begin; id < seg.end; ++id) {
-        const Node node = res.graph.nodes[id];  // decoded once for the model and the dispatch
-        mb->decide(s, id, node);
-        // A command's code is read once, from its record: most commands wake no rule and change nothing.
-        const bool command = node.kind == NodeKind::Command;
-        const CommandTable::Code code =
-            command ? m.unit(node.unit).parsed.commands.code(node.index) : CommandTable::Code{};
-        const auto& node_rules = command ? dispatch.rules_for(code) : dispatch.rules_for_other();
-        if (!node_rules.empty()) {
-          if (const int runs = mb->runs(id); runs > 0) {
-            NodeContext nc{m, res.graph, res.target, options, s, id, runs};
+      for (NodeId id = seg.begin; id < seg.end;) {
+        const NodeTable::Stretch st = res.graph.nodes.stretch(id);
+        const NodeId end = std::min(st.end, seg.end);
+        if (st.node.kind != NodeKind::Command) {  // Enter, Leave, ToolSelect: a stretch of one
+          mb->decide(s, id, st.node);
+          const auto& node_rules = dispatch.rules_for_other();
+          if (const int runs = mb->runs(id); runs > 0 && !node_rules.empty()) {
+            NodeContext nc{m, res.graph, res.target, options, s, id, runs, st.node};
             for (const Rule* r : node_rules) r->check_node(nc, node_sink);
           }
+          mb->step(s, id, st.node);
+          id = end;
+          continue;
         }
-        if (!command || ModelBuilder::changes_state(code)) mb->step(s, id, node);
+        // A run of commands of one file run: they all run or not alike. Most wake no rule and change nothing, so
+        // each command's code is read from its record and nothing more is done for those.
+        mb->decide_commands(id, end, st.node);
+        const int runs = mb->runs(id);
+        const CommandTable& commands = m.unit(st.node.unit).parsed.commands;
+        Node node = st.node;
+        for (; id < end; ++id) {
+          node.index = st.node.index + (id - st.begin);
+          const CommandTable::Code code = commands.code(node.index);
+          const auto& node_rules = dispatch.rules_for(code);
+          if (runs > 0 && !node_rules.empty()) {
+            NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
+            for (const Rule* r : node_rules) r->check_node(nc, node_sink);
+          }
+          if (ModelBuilder::changes_state(code)) mb->step(s, id, node);
+        }
       }
       if (seg.boot) {
         boot_end = s;

@@ -470,6 +470,11 @@ void ModelBuilder::decide(const MachineState& s, NodeId id, const Node& n) {
   exec_[id] = e;
 }
 
+void ModelBuilder::decide_commands(NodeId begin, NodeId end, const Node& n) {
+  const uint8_t parent = n.enter == kNoNode ? 2 : exec_[n.enter];
+  std::fill(exec_.begin() + begin, exec_.begin() + end, std::min<uint8_t>(parent, n.maybe ? 1 : 2));
+}
+
 void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
   const uint8_t e = exec_[id];
   if (e == 0) return;

@@ -1126,6 +1126,12 @@ void compute_blocks(ParsedFile& pf) {
       if (kk == MetaKind::If || kk == MetaKind::Elif || kk == MetaKind::Else) line.flags |= detail::kConditional;
       if (kk == MetaKind::While) line.flags |= detail::kInLoop;
     }
+    if ((line.flags & (detail::kConditional | detail::kInLoop)) && kind != LineKind::Meta) {
+      const uint32_t count = line.command_count < 65535 ? line.command_count : pf.lines.big_count(li);
+      auto& ranges = pf.block_commands;
+      if (count > 0 && !ranges.empty() && ranges.back().second == line.first) ranges.back().second += count;
+      else if (count > 0) ranges.emplace_back(line.first, line.first + count);
+    }
     const Span code{line.code_begin, line.code_end};
     if (meta == MetaKind::Else || meta == MetaKind::Elif) {
       const MetaKind last = stack.back().last;

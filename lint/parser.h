@@ -510,6 +510,9 @@ struct ParsedFile {
   LineSet paren_lines, apostrophe_lines;
   /// The lines whose comment holds a ':': a suppression comment (`; rrflint: ...`) can stand only there.
   LineSet colon_comment_lines;
+  /// The commands inside if/elif/else/while blocks (those whose line is LineTable::in_block), as ranges of
+  /// command indices [first, second), in order, disjoint and not adjacent: the graph marks a range *maybe* at once.
+  std::vector<std::pair<uint32_t, uint32_t>> block_commands;
   bool mixed_indentation = false;
   // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
   bool any_exponent = false;

@@ -62,7 +62,7 @@ Location NodeContext::where(NodeId other) const {
 }
 
 Location EndContext::where(NodeId other) const {
-  NodeContext nc{machine, graph, target, options, end_of_boot, other, 2};
+  NodeContext nc{machine, graph, target, options, end_of_boot, other, 2, graph.nodes[other]};
   return nc.where(other);
 }
 

@@ -53,15 +53,18 @@ struct NodeContext {
   const MachineState& state;  // before this node runs
   NodeId id;
   int runs;  // 2 = certainly runs, 1 = maybe (conditional), node effects are then unknown
+  Node self;  // graph.nodes[id], decoded once
 
-  Node node() const { return graph.nodes[id]; }
-  const FileUnit& unit() const { return machine.unit(node().unit); }
+  const Node& node() const { return self; }
+  const FileUnit& unit() const { return machine.unit(self.unit); }
   const ParsedFile& parsed() const { return unit().parsed; }
   /// Valid for NodeKind::Command only.
-  Command command() const { return parsed().commands[node().index]; }
-  bool is_command() const { return node().kind == NodeKind::Command; }
+  Command command() const { return parsed().commands[self.index]; }
+  bool is_command() const { return self.kind == NodeKind::Command; }
   bool is(char letter, int number) const {
-    return is_command() && command().letter == letter && command().number == number && command().fraction < 0;
+    if (!is_command()) return false;
+    const CommandTable::Code c = parsed().commands.code(self.index);
+    return c.letter == letter && c.number == number && c.fraction < 0;
   }
   ParamRef param(char letter) const { return parsed().find(command(), letter); }
   Location at(Span s) const { return Location{unit().source->id(), s}; }

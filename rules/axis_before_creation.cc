@@ -67,15 +67,12 @@ bool is_own_parameter(const Command& c, char letter) {
 }
 
 NodeId later_creation(const NodeContext& cx, char letter) {
-  const Segment& seg = cx.segment();
-  for (NodeId i = cx.id + 1; i < seg.end; ++i) {
-    const Node& n = cx.graph.nodes[i];
-    if (n.kind != NodeKind::Command) continue;
+  return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    if (n.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const Command& c = pf.commands[n.index];
-    if (c.letter == 'M' && c.number == 584 && c.fraction < 0 && pf.find(c, letter)) return i;
-  }
-  return kNoNode;
+    return c.letter == 'M' && c.number == 584 && c.fraction < 0 && pf.find(c, letter);
+  });
 }
 
 void check(const NodeContext& cx, Sink& out) {

@@ -59,10 +59,7 @@ std::string extruders_here(int n) {
 }
 
 NodeId later_m584_e(const NodeContext& cx) {
-  return g10::find_later(cx, [&](NodeId i) {
-    g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, i);
-    return nc.is('M', 584) && nc.pf->find(*nc.c, 'E') != nullptr;
-  });
+  return g10::find_later(cx, 'M', 584, [&](const g10::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
 }
 
 void note_m584_e(const NodeContext& cx, Report& r) {
@@ -73,28 +70,25 @@ void note_m584_e(const NodeContext& cx, Report& r) {
 void note_tool_uses(const NodeContext& cx, Report& r, int n) {
   const Segment& seg = cx.segment();
   int notes = 0;
-  for (NodeId i = cx.id + 1; i < seg.end && notes < 8; ++i) {
-    const Node& node = cx.graph.nodes[i];
+  cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId i, const Node& node) {
     if (node.kind == NodeKind::ToolSelect && node.index == static_cast<uint32_t>(n)) {
       r.note(cx.where(node.call_site), fmt::format("'T{}' here selects no tool", n));
-      ++notes;
-      continue;
+      return ++notes == 8;
     }
-    g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, i);
-    if (!nc || (!nc.is('G', 10) && !nc.is('M', 568) && !nc.is('M', 563))) continue;
-    auto P = get_int(*nc.pf, *nc.c, 'P');
-    if (!P.known() || P.value != n) continue;
-    if (nc.is('M', 563)) {
-      if (g10::m563_defines(*nc.pf, *nc.c)) return;
-      continue;
+    if (node.kind != NodeKind::Command) return false;
+    const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
+    const Command c = pf.commands[node.index];
+    if (!c.is('G', 10) && !c.is('M', 568) && !c.is('M', 563)) return false;
+    auto P = get_int(pf, c, 'P');
+    if (!P.known() || P.value != n) return false;
+    if (c.is('M', 563)) return g10::m563_defines(pf, c);
+    if (c.is('G', 10)) {
+      auto L = get_int(pf, c, 'L');
+      if (L.present() && (!L.known() || L.value != 1)) return false;
     }
-    if (nc.is('G', 10)) {
-      auto L = get_int(*nc.pf, *nc.c, 'L');
-      if (L.present() && (!L.known() || L.value != 1)) continue;
-    }
-    r.note(cx.where(i), fmt::format("{} for tool {} here has no effect", nc.c->letter == 'G' ? "G10" : "M568", n));
-    ++notes;
-  }
+    r.note(cx.where(i), fmt::format("{} for tool {} here has no effect", c.letter == 'G' ? "G10" : "M568", n));
+    return ++notes == 8;
+  });
 }
 
 // The first extruder number at or above `extruders` (one that does not exist), or -1.

@@ -77,12 +77,12 @@ struct NodeCommand {
   bool is(char letter, int number) const { return c && c->letter == letter && c->number == number && c->fraction < 0; }
 };
 
-inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) {
-  const Node& n = g.nodes[id];
+inline NodeCommand command_at(const Machine& m, const Node& n) {
   if (n.kind != NodeKind::Command) return {};
   const ParsedFile& pf = m.unit(n.unit).parsed;
   return {&pf, pf.commands[n.index]};
 }
+inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) { return command_at(m, g.nodes[id]); }
 
 /// Does this M563 define (create or re-create) a tool, rather than report one?
 inline bool m563_defines(const ParsedFile& pf, const Command& c) {
@@ -91,20 +91,22 @@ inline bool m563_defines(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
-/// The first node after `from` in its segment for which `pred(id, command)` holds; kNoNode if none.
+/// The first command node after this one in its segment with code `letter` `number` (no fraction) for which
+/// `pred(command)` holds; kNoNode if none. Other commands are passed over on their code alone.
 template <class Pred>
-NodeId find_later(const NodeContext& cx, Pred pred) {
-  const Segment& seg = cx.segment();
-  for (NodeId i = cx.id + 1; i < seg.end; ++i)
-    if (pred(i)) return i;
-  return kNoNode;
+NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
+  return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    if (n.kind != NodeKind::Command) return false;
+    const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+    const CommandTable::Code code = pf.commands.code(n.index);
+    return code.letter == letter && code.number == number && code.fraction < 0 && pred(NodeCommand{&pf, pf.commands[n.index]});
+  });
 }
 
 /// The later M563 in this segment that defines tool n.
 inline NodeId later_m563(const NodeContext& cx, int n) {
-  return find_later(cx, [&](NodeId i) {
-    NodeCommand nc = command_at(cx.machine, cx.graph, i);
-    if (!nc.is('M', 563) || !m563_defines(*nc.pf, *nc.c)) return false;
+  return find_later(cx, 'M', 563, [&](const NodeCommand& nc) {
+    if (!m563_defines(*nc.pf, *nc.c)) return false;
     auto P = get_int(*nc.pf, *nc.c, 'P');
     return P.known() && P.value == n;
   });
@@ -112,10 +114,7 @@ inline NodeId later_m563(const NodeContext& cx, int n) {
 
 /// The later M584 in this segment that names axis `letter`.
 inline NodeId later_m584_for(const NodeContext& cx, char letter) {
-  return find_later(cx, [&](NodeId i) {
-    NodeCommand nc = command_at(cx.machine, cx.graph, i);
-    return nc.is('M', 584) && nc.pf->find(*nc.c, letter) != nullptr;
-  });
+  return find_later(cx, 'M', 584, [&](const NodeCommand& nc) { return nc.pf->find(*nc.c, letter) != nullptr; });
 }
 
 /// Does any M584 on the card name axis `letter`? A macro run after boot may create the axis.
@@ -249,25 +248,28 @@ inline bool is_deselect(const Machine& m, const Graph& g, NodeId id) {
 
 /// Is tool n's Z set again (or the tool re-created) later in this segment before a T selects it?
 inline bool z_set_later(const NodeContext& cx, int n) {
-  const Segment& seg = cx.segment();
-  for (NodeId i = cx.id + 1; i < seg.end; ++i) {
-    const Node& node = cx.graph.nodes[i];
-    if (node.kind == NodeKind::ToolSelect) {
-      if (node.index == static_cast<uint32_t>(n)) return false;
-      if (node.index == UINT32_MAX && !is_deselect(cx.machine, cx.graph, i)) return false;
-      continue;
-    }
-    NodeCommand nc = command_at(cx.machine, cx.graph, i);
-    if (!nc) continue;
-    auto P = get_int(*nc.pf, *nc.c, 'P');
+  // Walks on to the first T that selects tool n (or may: T{…}), or the first M563 / G10 that sets its Z.
+  bool set = false;
+  cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId i, const Node& node) {
+    if (node.kind == NodeKind::ToolSelect)
+      return node.index == static_cast<uint32_t>(n) || (node.index == UINT32_MAX && !is_deselect(cx.machine, cx.graph, i));
+    if (node.kind != NodeKind::Command) return false;
+    const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
+    const CommandTable::Code code = pf.commands.code(node.index);
+    const bool m563 = code.letter == 'M' && code.number == 563 && code.fraction < 0;
+    const bool g10 = code.letter == 'G' && code.number == 10 && code.fraction < 0;
+    if (!m563 && !g10) return false;
+    const Command c = pf.commands[node.index];
+    auto P = get_int(pf, c, 'P');
     const bool this_tool = P.present() && (!P.known() || P.value == n);  // an unknown P may be this tool
-    if (nc.is('M', 563) && m563_defines(*nc.pf, *nc.c) && this_tool) return true;
-    if (nc.is('G', 10) && this_tool && nc.pf->find(*nc.c, 'Z')) {
-      auto L = get_int(*nc.pf, *nc.c, 'L');
-      if (!L.present() || !L.known() || L.value == 1) return true;
+    if (m563 && m563_defines(pf, c) && this_tool) set = true;
+    if (g10 && this_tool && pf.find(c, 'Z')) {
+      auto L = get_int(pf, c, 'L');
+      if (!L.present() || !L.known() || L.value == 1) set = true;
     }
-  }
-  return false;
+    return set;
+  });
+  return set;
 }
 
 inline std::optional<MissingZ> missing_z(const NodeContext& cx) {

@@ -42,13 +42,11 @@ G10 L2 P1 X0 Y0
 
 /// Did a G92 or G28 run earlier in the boot sequence? Then the position may be known.
 bool position_set_before(const NodeContext& cx) {
-  for (NodeId j = cx.segment().begin; j < cx.id; ++j) {
-    const Node& n = cx.graph.nodes[j];
-    if (n.kind != NodeKind::Command) continue;
-    const Command& c = cx.machine.unit(n.unit).parsed.commands[n.index];
-    if (c.is('G', 92) || c.is('G', 28)) return true;
-  }
-  return false;
+  return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
+    if (n.kind != NodeKind::Command) return false;
+    const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
+    return c.letter == 'G' && (c.number == 92 || c.number == 28) && c.fraction < 0;
+  }) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {

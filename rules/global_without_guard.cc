@@ -69,8 +69,10 @@ void check(const EndContext& cx, Sink& out) {
   std::set<uint32_t> boot_units;
   for (const Segment& seg : cx.graph.segments) {
     if (!seg.boot) continue;
-    for (NodeId i = seg.begin; i < seg.end; ++i)
-      if (cx.graph.nodes[i].kind == NodeKind::Enter) boot_units.insert(cx.graph.nodes[i].unit);
+    cx.graph.nodes.find_if(seg.begin, seg.end, [&](NodeId, const Node& n) {
+      if (n.kind == NodeKind::Enter) boot_units.insert(n.unit);
+      return false;
+    });
   }
   for (uint32_t u : boot_units) {
     const FileUnit& fu = cx.machine.unit(u);

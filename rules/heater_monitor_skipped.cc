@@ -50,8 +50,7 @@ struct Cmd {
   std::optional<Command> c;
 };
 
-Cmd cmd_at(const NodeContext& cx, NodeId i) {
-  const Node& n = cx.graph.nodes[i];
+Cmd cmd_at(const NodeContext& cx, const Node& n) {
   const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
   return {&pf, pf.commands[n.index]};
 }
@@ -80,34 +79,35 @@ void check(const NodeContext& cx, Sink& out) {
     const int h = static_cast<int>(hv);
     if (h < 0 || s.heaters.count(h)) continue;
     // The later M950 that creates the heater.
-    NodeId create = kNoNode;
-    for (NodeId i = cx.id + 1; i < seg.end && create == kNoNode; ++i) {
-      if (cx.graph.nodes[i].kind != NodeKind::Command) continue;
-      Cmd k = cmd_at(cx, i);
-      if (k.c->letter == 'M' && k.c->number == 950 && k.c->fraction < 0) {
-        auto v = get_int(*k.pf, *k.c, 'H');
-        if (v.unknown()) return;  // some heater is created from an expression: cannot tell
-        if (v.known() && v.value == h && k.pf->find(*k.c, 'C')) create = i;
-      }
-    }
+    bool unknown = false;
+    const NodeId create = cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId, const Node& n) {
+      if (n.kind != NodeKind::Command) return false;
+      Cmd k = cmd_at(cx, n);
+      if (k.c->letter != 'M' || k.c->number != 950 || k.c->fraction >= 0) return false;
+      auto v = get_int(*k.pf, *k.c, 'H');
+      unknown = v.unknown();  // some heater is created from an expression: cannot tell
+      return unknown || (v.known() && v.value == h && k.pf->find(*k.c, 'C'));
+    });
+    if (unknown) return;
     if (create == kNoNode) continue;
-    bool closed = false, model = false;
-    for (NodeId i = create + 1; i < seg.end && !closed; ++i) {
-      if (cx.graph.nodes[i].kind != NodeKind::Command) continue;
-      Cmd k = cmd_at(cx, i);
+    bool model = false;
+    const bool closed = cx.graph.nodes.find_if(create + 1, seg.end, [&](NodeId, const Node& n) {
+      if (n.kind != NodeKind::Command) return false;
+      Cmd k = cmd_at(cx, n);
       const Command& kc = *k.c;
-      if (kc.letter != 'M' || kc.fraction >= 0) continue;
+      if (kc.letter != 'M' || kc.fraction >= 0) return false;
       if (kc.number == 143) {
         auto v = get_int(*k.pf, kc, 'H');
         const bool same = v.unknown() || (v.known() ? v.value == h : h == 1);
-        if (same && k.pf->find(kc, 'S')) closed = true;
-      } else if (kc.number == 307) {
+        return same && k.pf->find(kc, 'S') != nullptr;
+      }
+      if (kc.number == 307) {
         auto v = get_int(*k.pf, kc, 'H');
         if (v.known() && v.value == h) model = true;
-      } else if (names_heater(k, h)) {
-        closed = true;
+        return false;
       }
-    }
+      return names_heater(k, h);
+    }) != kNoNode;
     if (closed) continue;
     const bool bed = c.number != 563;
     out.report(kMeta, cx.at(c.span),

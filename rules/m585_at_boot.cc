@@ -43,12 +43,11 @@ M501    ; load the offsets measured by a probing macro and saved with M500
 };
 
 bool homed_before(const NodeContext& cx) {
-  for (NodeId j = cx.segment().begin; j < cx.id; ++j) {
-    const Node& n = cx.graph.nodes[j];
-    if (n.kind == NodeKind::Command && !n.maybe && cx.machine.unit(n.unit).parsed.commands[n.index].is('G', 28))
-      return true;
-  }
-  return false;
+  return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
+    if (n.kind != NodeKind::Command || n.maybe) return false;
+    const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
+    return c.letter == 'G' && c.number == 28 && c.fraction < 0;
+  }) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {

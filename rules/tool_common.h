@@ -156,14 +156,11 @@ inline bool inside_m501(const Graph& g, NodeId id) {
 /// The first later command in the node's segment that satisfies `pred` (look-ahead for notes), or kNoNode.
 template <class Pred>
 NodeId find_later(const NodeContext& cx, Pred pred) {
-  const Segment& seg = cx.segment();
-  for (NodeId j = cx.id + 1; j < seg.end; ++j) {
-    const Node& n = cx.graph.nodes[j];
-    if (n.kind != NodeKind::Command) continue;
+  return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    if (n.kind != NodeKind::Command) return false;
     const FileUnit& u = cx.machine.unit(n.unit);
-    if (pred(u.parsed, u.parsed.commands[n.index], n)) return j;
-  }
-  return kNoNode;
+    return pred(u.parsed, u.parsed.commands[n.index], n);
+  });
 }
 
 /// Does a later command in this segment create tool `n` (a defining M563 P<n>, not a deletion)?

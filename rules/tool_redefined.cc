@@ -108,21 +108,24 @@ void check(const NodeContext& cx, Sink& out) {
   // Retraction and mix ratios are not modelled as values: any M207/M567 for this tool since it was created.
   // The temperatures' note goes to the last G10/M568 that set R or S for it.
   NodeId temps_at = kNoNode;
-  for (NodeId j = t->created + 1; j < cx.id; ++j) {
-    const Node& nd = cx.graph.nodes[j];
-    if (nd.kind != NodeKind::Command || nd.maybe) continue;
+  cx.graph.nodes.find_if(t->created + 1, cx.id, [&](NodeId j, const Node& nd) {
+    if (nd.kind != NodeKind::Command || nd.maybe) return false;
     const ParsedFile& opf = cx.machine.unit(nd.unit).parsed;
+    const CommandTable::Code code = opf.commands.code(nd.index);
+    if (code.fraction >= 0 || !(code.letter == 'G' ? code.number == 10
+                                : code.letter == 'M' && (code.number == 207 || code.number == 567 || code.number == 568)))
+      return false;
     const Command& oc = opf.commands[nd.index];
-    const bool m207 = oc.is('M', 207), m567 = oc.is('M', 567), temps = oc.is('G', 10) || oc.is('M', 568);
-    if (!m207 && !m567 && !temps) continue;
+    const bool m207 = oc.is('M', 207), temps = oc.is('G', 10) || oc.is('M', 568);
     auto op = get_int(opf, oc, 'P');
     if (temps) {
       if (op.known() && op.value == n && (opf.find(oc, 'R') || opf.find(oc, 'S'))) temps_at = j;
-      continue;
+      return false;
     }
-    if (op.known() ? op.value != n : !(m207 && op.absent())) continue;
+    if (op.known() ? op.value != n : !(m207 && op.absent())) return false;
     keep(m207 ? "retraction settings" : "mix ratios", j);
-  }
+    return false;
+  });
   if (hot) keep("temperatures", temps_at != kNoNode ? temps_at : t->last_configured);
   if (lost.empty()) return;
   std::vector<std::string> names;

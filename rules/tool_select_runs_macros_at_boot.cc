@@ -117,15 +117,15 @@ std::string file_name(std::string_view sd_path) {
 /// The last G10/M568 before this node that set an active temperature for tool n.
 NodeId temperature_origin(const NodeContext& cx, int n) {
   NodeId found = kNoNode;
-  for (NodeId j = cx.segment().begin; j < cx.id; ++j) {
-    const Node& nd = cx.graph.nodes[j];
-    if (nd.kind != NodeKind::Command) continue;
+  cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId j, const Node& nd) {
+    if (nd.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(nd.unit).parsed;
     const Command& c = pf.commands[nd.index];
-    if (!c.is('G', 10) && !c.is('M', 568)) continue;
+    if (!c.is('G', 10) && !c.is('M', 568)) return false;
     auto P = get_int(pf, c, 'P');
     if (P.known() && P.value == n && pf.find(c, 'S')) found = j;
-  }
+    return false;
+  });
   return found;
 }
 
@@ -147,17 +147,17 @@ void check(const NodeContext& cx, Sink& out) {
   std::vector<NodeId> macros;
   NodeId motion = kNoNode;
   const Segment& seg = cx.segment();
-  for (NodeId j = cx.id + 1; j < seg.end; ++j) {
-    const Node& nd = cx.graph.nodes[j];
-    if ((nd.kind == NodeKind::Command || nd.kind == NodeKind::Leave) && nd.enter == self.enter) break;
+  cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId j, const Node& nd) {
+    if ((nd.kind == NodeKind::Command || nd.kind == NodeKind::Leave) && nd.enter == self.enter) return true;
     if (nd.kind == NodeKind::Enter && nd.call_site == cx.id &&
         (nd.call == CallKind::ToolFree || nd.call == CallKind::ToolPre || nd.call == CallKind::ToolPost))
       macros.push_back(j);
-    if (nd.kind != NodeKind::Command || motion != kNoNode || macros.empty() || nd.enter != macros.back()) continue;
+    if (nd.kind != NodeKind::Command || motion != kNoNode || macros.empty() || nd.enter != macros.back()) return false;
     const ParsedFile& mpf = cx.machine.unit(nd.unit).parsed;
     const Command& mc = mpf.commands[nd.index];
     if (is_motion(mc) && !guarded(mpf, mc)) motion = j;
-  }
+    return false;
+  });
 
   if (motion != kNoNode) {
     const Node& mn = cx.graph.nodes[motion];

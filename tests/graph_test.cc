@@ -26,12 +26,14 @@ struct Built {
   Graph graph;
 };
 
-std::unique_ptr<Built> build(const std::map<std::string, std::string>& files, Version fw = kLatestVersion) {
+std::unique_ptr<Built> build(const std::map<std::string, std::string>& files, Version fw = kLatestVersion,
+                             size_t max_nodes = GraphOptions{}.max_nodes) {
   auto b = std::make_unique<Built>();
   for (const auto& [path, text] : files) b->reader.add(path, text);
   b->machine = std::make_unique<Machine>(b->sources, b->reader);
   GraphOptions o;
   o.firmware = fw;
+  o.max_nodes = max_nodes;
   b->graph = build_graph(*b->machine, o);
   return b;
 }
@@ -220,6 +222,77 @@ TEST_CASE("graph: nodes inside if/while are maybe, and so is everything a maybe 
   CHECK(boot(*b) ==
         ">/sys/config.g(boot) M83 ?M98 ?>/sys/a.g(M98) ?M98 ?>/sys/b.g(M98) ?G1 ?< ?< "
         "?T0 ?>/sys/tpre0.g(tpre) ?G1 ?< ?=T0 ?M82 M84 <");
+}
+
+TEST_CASE("graph: the node limit cuts a run of commands where it falls", "[graph]") {
+  const std::string config = "G1 X1\nif a\n  G1 X2\n  G1 X3\nG1 X4\nM98 P\"a.g\"\nG1 X5\n";
+  const std::map<std::string, std::string> files{{"/sys/config.g", config}, {"/sys/a.g", "M83\nM84\n"}};
+  CHECK(boot(*build(files)) == ">/sys/config.g(boot) G1 ?G1 ?G1 G1 M98 >/sys/a.g(M98) M83 M84 < G1 <");
+  CHECK_FALSE(build(files)->graph.truncated);
+  // The limit inside the block, at the M98, inside the called file: the run stops there, the files still leave.
+  auto at3 = build(files, kLatestVersion, 3);
+  CHECK(boot(*at3) == ">/sys/config.g(boot) G1 ?G1 <");
+  CHECK(at3->graph.truncated);
+  CHECK(boot(*build(files, kLatestVersion, 5)) == ">/sys/config.g(boot) G1 ?G1 ?G1 G1 <");
+  CHECK(boot(*build(files, kLatestVersion, 8)) == ">/sys/config.g(boot) G1 ?G1 ?G1 G1 M98 >/sys/a.g(M98) M83 < <");
+}
+
+TEST_CASE("graph: the node table decodes runs and whole nodes alike, at any id", "[graph]") {
+  // A reference list of nodes: runs of commands of several lengths (some across the 4096-id steps of the run
+  // index), broken by a change of file run, of maybe, by a gap in the command indices, and by whole nodes.
+  std::vector<Node> want;
+  NodeTable table;
+  uint32_t index = 0;
+  for (int k = 0; k < 200; ++k) {
+    const uint32_t len = k % 7 == 0 ? 5000 : static_cast<uint32_t>(k % 5);
+    Node c{NodeKind::Command, k % 3 == 0 ? CallKind::M98 : CallKind::Boot, k % 4 == 1, static_cast<uint16_t>(1 + k % 2),
+           static_cast<uint32_t>(k % 3), index, static_cast<NodeId>(k), kNoNode};
+    if (k % 2) {
+      table.push_commands(c, len);  // a stretch at once,
+    } else {
+      for (uint32_t i = 0; i < len; ++i, ++c.index) table.push_back(c);  // or one by one
+      c.index = index;
+    }
+    for (uint32_t i = 0; i < len; ++i, ++c.index) want.push_back(c);
+    index += len + (k % 6 == 5 ? 3 : 0);  // sometimes a gap: a new run though all else is equal
+    if (k % 5 == 2) {
+      const Node other{NodeKind::ToolSelect, CallKind::Boot, false, 1, 0, 7, 0, static_cast<NodeId>(want.size() - 1)};
+      table.push_back(other);
+      want.push_back(other);
+    }
+  }
+  REQUIRE(table.size() == want.size());
+  CHECK(table.entries() < 400);
+  auto same = [](const Node& a, const Node& b) {
+    return a.kind == b.kind && a.call == b.call && a.maybe == b.maybe && a.depth == b.depth && a.unit == b.unit &&
+           a.index == b.index && a.enter == b.enter && a.call_site == b.call_site;
+  };
+  size_t bad = 0;
+  for (NodeId id = 0; id < want.size(); ++id) {
+    if (!same(table[id], want[id])) ++bad;
+    const NodeTable::Stretch st = table.stretch(id);
+    if (st.begin > id || st.end <= id || !same(st.node, want[st.begin])) ++bad;
+    // Every node of a stretch decodes like its first, one command further on.
+    Node next = st.node;
+    next.index += id - st.begin;
+    if (!same(next, want[id])) ++bad;
+  }
+  CHECK(bad == 0);
+  // find_if visits every node in order from anywhere, with the same values.
+  for (NodeId from : {NodeId{0}, NodeId{1}, NodeId{4095}, NodeId{4096}, NodeId{12345}, static_cast<NodeId>(want.size() - 1)}) {
+    NodeId expect = from;
+    size_t wrong = 0;
+    const NodeId hit = table.find_if(from, static_cast<NodeId>(want.size()), [&](NodeId id, const Node& n) {
+      if (id != expect++ || !same(n, want[id])) ++wrong;
+      return false;
+    });
+    CHECK(hit == kNoNode);
+    CHECK(wrong == 0);
+    CHECK(expect == want.size());
+  }
+  CHECK(table.find_if(10, 20000, [&](NodeId id, const Node&) { return id == 17777; }) == 17777);
+  CHECK(table.find_if(10, 17777, [&](NodeId id, const Node&) { return id == 17777; }) == kNoNode);
+  CHECK(table.find_if(5, 5, [](NodeId, const Node&) { return true; }) == kNoNode);
 }
 
 TEST_CASE("graph: files not reached at boot become entries", "[graph]") {

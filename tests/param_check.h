@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "lint/parser.h"
 
@@ -32,6 +33,22 @@ inline std::string param_mismatch(const ParsedFile& pf, const Command& c) {
   return "";
 }
 
+
+/// Why ParsedFile::block_commands disagrees with the block flag of each command's line; empty when they agree.
+inline std::string block_commands_mismatch(const ParsedFile& pf) {
+  std::vector<bool> in_range(pf.commands.size(), false);
+  uint32_t prev_end = 0;
+  for (size_t k = 0; k < pf.block_commands.size(); ++k) {
+    auto [a, b] = pf.block_commands[k];
+    if (a >= b || b > pf.commands.size() || (k > 0 && a <= prev_end)) return "block range " + std::to_string(k) + " is out of order\n";
+    for (uint32_t i = a; i < b; ++i) in_range[i] = true;
+    prev_end = b;
+  }
+  for (uint32_t i = 0; i < pf.commands.size(); ++i)
+    if (in_range[i] != pf.lines.in_block(pf.commands.code(i).line))
+      return "block ranges differ at command " + std::to_string(i) + '\n';
+  return "";
+}
 
 /// Everything a parse recorded, as text: every line and command field, every parameter as lexed on demand, the
 /// errors, the cut expressions and the file flags. Two parses that must agree (in parts or not, with or without
@@ -82,6 +99,8 @@ inline std::string parse_dump(const ParsedFile& pf) {
     if (has(line.comment, ':') && !pf.colon_comment_lines.contains(l)) out += "colon set misses " + std::to_string(l) + '\n';
     if (pf.colon_comment_lines.contains(l) && line.comment.empty()) out += "colon set: no comment at " + std::to_string(l) + '\n';
   }
+  for (auto [a, b] : pf.block_commands) out += "B " + std::to_string(a) + '-' + std::to_string(b) + '\n';
+  out += block_commands_mismatch(pf);
   for (bool b : {pf.mixed_indentation, pf.any_exponent, pf.any_blank_before_colon, pf.any_repeated_letter,
                  pf.any_line_number, pf.any_tab_indent})
     out += b ? '1' : '0';

@@ -400,6 +400,28 @@ TEST_CASE("parser: blocks by indentation set the conditional and loop flags", "[
   CHECK(errors("if a\n  M83\n  else\n    M82\n").size() == 1);
 }
 
+TEST_CASE("parser: the commands inside blocks, as ranges", "[parser]") {
+  using Ranges = std::vector<std::pair<uint32_t, uint32_t>>;
+  auto ranges = [](std::string text, ParseOptions o = {}) {
+    Parsed p = parse_text(std::move(text), o);
+    CHECK(test::block_commands_mismatch(p.pf).empty());
+    return p.pf.block_commands;
+  };
+  CHECK(ranges("G1 X1\nG1 X2\n").empty());
+  // Two lines of one block, and a line of two commands: one range; a plain indented block is not a block here.
+  CHECK(ranges("M83\nif a\n  G1 X1\n  G1 X2 G1 X3\nM84\n  G1 X4\n") == Ranges{{1, 4}});
+  // Meta lines and blank lines inside a block hold no commands and do not break a range; a command outside does.
+  CHECK(ranges("while a\n  G1 X1\n  if b\n    break\n\n  G1 X2\nG1 X3\nif c\n  T0\n") == Ranges{{0, 2}, {3, 4}});
+  // A block at the start, and one that runs to the end of the file.
+  CHECK(ranges("if a\n  M83\nelse\n  M82\n") == Ranges{{0, 2}});
+  // Parsed in parts on several threads, the same.
+  std::string text;
+  for (int i = 0; i < 500; ++i) text += i % 3 == 0 ? "if a\n  G1 X1 G1 X2\n" : "G1 Y1\n";
+  const Ranges serial = ranges(text);
+  CHECK(serial.size() == 167);
+  CHECK(ranges(text, ParseOptions{.threads = 3, .part_bytes = 100}) == serial);
+}
+
 // §1.1 Stored line length.
 TEST_CASE("parser: stored line length", "[parser]") {
   auto stored = [](std::string text, ParseOptions o = {}) { return parse_text(std::move(text), o).pf.lines[0].stored_length; };
