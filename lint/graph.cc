@@ -4,7 +4,6 @@
 #include <set>
 #include <unordered_map>
 
-#include "memory.h"
 #include "values.h"
 
 namespace rrflint {
