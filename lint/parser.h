@@ -547,10 +547,13 @@ struct ParsedFile {
  private:
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
-  CodeCommands run(size_t key) const;
-  // Every command's index, sorted by code key (then file order); the run of key k is [code_start_[k],
-  // code_start_[k + 1]). Keys: G0…G1023, M0…M1023, T, then the commands of no key (unlisted_codes).
+  CodeCommands run(size_t j) const;     // the commands of code_keys_[j]
+  CodeCommands of_key(uint16_t key) const;
+  // Every command's index, sorted by code key (then file order). Keys: G0…G1023, M0…M1023, T, then the commands of
+  // no key (unlisted_codes). code_keys_ are the keys the file uses, in order; the run of code_keys_[j] is
+  // [code_start_[j], code_start_[j + 1]).
   std::vector<uint32_t> code_order_;
+  std::vector<uint16_t> code_keys_;
   std::vector<uint32_t> code_start_;
   std::vector<uint16_t> fraction_keys_;  // the keys with a fractional command, in order
 };
