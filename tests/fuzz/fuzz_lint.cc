@@ -57,6 +57,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (!test::param_mismatch(pf, c).empty()) __builtin_trap();
     for (const Line& l : pf.lines)
       if (l.code.end > l.span.end || l.comment.end > l.span.end || l.span.end > pf.source->size()) __builtin_trap();
+    // The ranges of commands inside blocks (the graph's runs) agree with every command's line.
+    if (!test::block_commands_mismatch(pf).empty()) __builtin_trap();
     // The short path for simple lines records what the full lexer records.
     if (test::parse_dump(pf) != test::parse_dump(parse(*pf.source, ParseOptions{.fast_lines = false}))) __builtin_trap();
   }
