@@ -202,10 +202,10 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   };
   for (const uint32_t a : acts) {
     if (!push_until(a) || full()) break;
-    const bool m = maybe || pf.lines.in_block(pf.commands.code(a).line);
+    const CommandTable::Code code = pf.commands.code(a);
+    const bool m = maybe || pf.lines.in_block(code.line);
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, a, enter, kNoNode});
     ++ci;
-    const CommandTable::Code code = pf.commands.code(a);
     if (code.letter == 'T') {
       tool_change(u, pf.commands[a], id, m, depth);
     } else if (code.number == 98) {

@@ -184,6 +184,12 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
     boot_end = mb->initial_state();
   };
   auto forward_pass = [&](Sink& node_sink) {
+    auto check_node = [&](const MachineState& s, NodeId id, int runs, const Node& node,
+                          const std::vector<const Rule*>& node_rules) {
+      if (runs <= 0 || node_rules.empty()) return;
+      const NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
+      for (const Rule* r : node_rules) r->check_node(nc, node_sink);
+    };
     for (const Segment& seg : res.graph.segments) {
       MachineState s = seg.boot ? mb->initial_state() : boot_end;
       if (!seg.boot && !have_boot) s.unknown_baseline = true;
@@ -192,29 +198,21 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
         const NodeId end = std::min(st.end, seg.end);
         if (st.node.kind != NodeKind::Command) {  // Enter, Leave, ToolSelect: a stretch of one
           mb->decide(s, id, st.node);
-          const auto& node_rules = dispatch.rules_for_other();
-          if (const int runs = mb->runs(id); runs > 0 && !node_rules.empty()) {
-            NodeContext nc{m, res.graph, res.target, options, s, id, runs, st.node};
-            for (const Rule* r : node_rules) r->check_node(nc, node_sink);
-          }
+          check_node(s, id, mb->runs(id), st.node, dispatch.rules_for_other());
           mb->step(s, id, st.node);
           id = end;
           continue;
         }
         // A run of commands of one file run: they all run or not alike. Most wake no rule and change nothing, so
         // each command's code is read from its record and nothing more is done for those.
-        mb->decide_commands(id, end, st.node);
+        mb->decide_commands(s, id, end, st.node);
         const int runs = mb->runs(id);
         const CommandTable& commands = m.unit(st.node.unit).parsed.commands;
         Node node = st.node;
         for (; id < end; ++id) {
           node.index = st.node.index + (id - st.begin);
           const CommandTable::Code code = commands.code(node.index);
-          const auto& node_rules = dispatch.rules_for(code);
-          if (runs > 0 && !node_rules.empty()) {
-            NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
-            for (const Rule* r : node_rules) r->check_node(nc, node_sink);
-          }
+          check_node(s, id, runs, node, dispatch.rules_for(code));
           if (ModelBuilder::changes_state(code)) mb->step(s, id, node);
         }
       }

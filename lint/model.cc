@@ -470,9 +470,9 @@ void ModelBuilder::decide(const MachineState& s, NodeId id, const Node& n) {
   exec_[id] = e;
 }
 
-void ModelBuilder::decide_commands(NodeId begin, NodeId end, const Node& n) {
-  const uint8_t parent = n.enter == kNoNode ? 2 : exec_[n.enter];
-  std::fill(exec_.begin() + begin, exec_.begin() + end, std::min<uint8_t>(parent, n.maybe ? 1 : 2));
+void ModelBuilder::decide_commands(const MachineState& s, NodeId begin, NodeId end, const Node& n) {
+  decide(s, begin, n);  // a command's decision depends only on its file run and maybe: the run's first decides all
+  std::fill(exec_.begin() + begin + 1, exec_.begin() + end, exec_[begin]);
 }
 
 void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {

@@ -167,7 +167,7 @@ class ModelBuilder {
   void decide(const MachineState& s, NodeId id) { decide(s, id, g_.nodes[id]); }
   void decide(const MachineState& s, NodeId id, const Node& n);
   /// decide() for the command nodes [begin, end) of one run (NodeTable::Stretch; `n` is the first): they run alike.
-  void decide_commands(NodeId begin, NodeId end, const Node& n);
+  void decide_commands(const MachineState& s, NodeId begin, NodeId end, const Node& n);
   /// Can a command of this code change the state? Most cannot (moves, settings): step() does nothing for them,
   /// and the forward pass need not call it.
   static bool changes_state(const CommandTable::Code& c) {

@@ -163,16 +163,4 @@ NodeId find_later(const NodeContext& cx, Pred pred) {
   });
 }
 
-/// Does a later command in this segment create tool `n` (a defining M563 P<n>, not a deletion)?
-inline NodeId later_m563(const NodeContext& cx, int n) {
-  return find_later(cx, [n](const ParsedFile& pf, const Command& c, const Node&) {
-    if (!c.is('M', 563)) return false;
-    auto P = get_int(pf, c, 'P');
-    if (!P.known() || P.value != n) return false;
-    for (char L : {'S', 'D', 'H', 'X', 'Y', 'Z', 'F', 'R'})
-      if (pf.find(c, L)) return true;
-    return false;
-  });
-}
-
 }  // namespace rrflint::tools
