@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <set>
 #include <thread>
 #include <unordered_map>
 
@@ -21,6 +23,8 @@ namespace {
 
 struct Totals {
   std::vector<Diagnostic> diags;
+  size_t linted = 0;              // files linted and reported on (never 0 in a run that passes)
+  bool lone_hint = false;         // a lone file or stdin was linted with no card around it (say so once)
   size_t files = 0, fixed = 0, fixed_files = 0, suppressions = 0, suppressed_files = 0;
   bool failing = false, io_error = false;
   std::string diff;
@@ -72,6 +76,40 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
   return out;
 }
 
+// What a job could not lint. A config.g that cannot be linted makes the card an error (exit 2), and so does a file
+// named on the command line that was not linted; other files that cannot be linted are findings (RRF506). Also
+// counts the files linted, so that a run over nothing never passes.
+void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Totals& t) {
+  const std::string config = to_lower(eff.lint.sys_dir + "/config.g");
+  std::set<std::string> linted;
+  for (uint32_t i = 0; i < m.unit_count(); ++i) linted.insert(to_lower(m.unit(i).sd_path));
+  for (const LoadProblem& p : m.problems()) {
+    const std::string sd = to_lower(p.sd_path);
+    if (sd == config && (job.card || job.standalone.empty() || to_lower(job.standalone.filename().string()) == "config.g")) {
+      error(fmt::format("{}: cannot lint config.g: {}", p.display, p.message));
+      t.io_error = true;
+    } else if (job.named.count(sd) || (!job.card && job.explicit_path)) {
+      error(fmt::format("{}: {}", p.display, p.message));
+      t.io_error = true;
+    }
+  }
+  for (const auto& [sd, as_named] : job.named)
+    if (!linted.count(sd) && std::none_of(m.problems().begin(), m.problems().end(),
+                                          [&](const LoadProblem& p) { return to_lower(p.sd_path) == sd; })) {
+      error(fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files, and macros without an extension "
+                        "below macros/)",
+                        as_named));
+      t.io_error = true;
+    }
+  if (!job.card && m.unit_count() == 0 && m.problems().empty() && job.explicit_path) {
+    error(fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files)", job.title));
+    t.io_error = true;
+  }
+  if (!job.card && job.explicit_path && m.unit_count() > 0 &&
+      to_lower(job.standalone.filename().string()) != "config.g")
+    t.lone_hint = true;
+}
+
 // One job: lint (unless linted ahead), then the requested rewrite, then collect what is to be reported.
 bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
              Totals& t, std::unique_ptr<Prelinted> pre = nullptr) {
@@ -94,6 +132,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
     const std::string sd = to_lower(f.sd_path());
     if (!job.report_all) it->second = job.only.count(sd) > 0;
     else if (job.stdin_bytes && sd == to_lower(job.stdin_sd_path)) it->second = true;
+    else if (job.named_despite_exclusion) it->second = true;
     else if (auto abs = reader.disk_path(f.sd_path()))
       it->second = !settings.excluded(*abs) && !(co.plan.respect_gitignore && gitignore.ignored(*abs));
     return it->second;
@@ -107,22 +146,22 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
   } else {
     r = lint_machine(sm, reader, eff.lint);
   }
-  if (job.report_all && co.plan.respect_gitignore) {
+  if (job.report_all && co.plan.respect_gitignore && !job.named_despite_exclusion) {
     // One `git check-ignore` for the whole card rather than one per file.
     std::vector<std::string> files;
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
       if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(std::move(*abs));
     gitignore.prefetch(files);
   }
-  for (const LoadProblem& p : r.machine->problems()) {
-    warning(fmt::format("{}: {}", p.display, p.message));
-    if (job.only.count(to_lower(p.sd_path)) || !job.card) t.io_error = true;
-  }
+  note_unlinted(job, eff, *r.machine, t);
+  for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+    if (reportable(*r.machine->unit(i).source)) ++t.linted;
 
   // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds).
   if (co.fix || co.diff) {
     std::map<std::string, std::string> original, current;  // by SD path
     std::map<std::string, std::string> display;
+    std::map<std::string, size_t> fixed_in;  // fixes applied, by SD path (a fix counts for the file it starts in)
     FixOptions fo;
     fo.unsafe = co.unsafe_fixes;
     for (int round = 0; round < fo.max_rounds; ++round) {
@@ -131,9 +170,11 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
         const SourceFile& f = sm.get(id);
         return reportable(f) && (reader.disk_path(f.sd_path()) || job.stdin_bytes);
       };
-      const size_t n = apply_fixes(sm, r.diagnostics, fo, allowed, texts);
+      std::map<FileId, size_t> per_file;
+      const size_t n = apply_fixes(sm, r.diagnostics, fo, allowed, texts, &per_file);
       if (n == 0) break;
       t.fixed += n;
+      for (const auto& [id, k] : per_file) fixed_in[sm.get(id).sd_path()] += k;
       for (auto& [id, text] : texts) {
         const SourceFile& f = sm.get(id);
         original.try_emplace(f.sd_path(), f.text());
@@ -143,6 +184,10 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
       }
       r = lint_machine(sm, reader, eff.lint);
     }
+    // Nothing is written outside the linted folder (a card's root, a lone file's folder).
+    const std::optional<fs::path> root =
+        job.card ? std::optional(job.card->root) : std::optional(fs::absolute(job.standalone).parent_path());
+    bool unwritten = false;
     for (const auto& [sd, text] : current) {
       const std::string& before = original[sd];
       if (before == text) continue;
@@ -157,11 +202,17 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
         continue;
       }
       std::string err;
-      if (!write_atomic(*disk, before, text, &err)) {
-        error(fmt::format("{}: {}", display[sd], err));
+      if (!write_atomic(*disk, before, text, root, &err)) {
+        // The file keeps its text: its fixes are not counted, and its findings are reported as they stand.
+        error(fmt::format("{}: {}; its findings are reported as they are", display[sd], err));
         t.io_error = true;
+        t.fixed -= std::min(t.fixed, fixed_in[sd]);
+        --t.fixed_files;
+        reader.set(sd, before);
+        unwritten = true;
       }
     }
+    if (unwritten) r = lint_machine(sm, reader, eff.lint);
     if (job.stdin_bytes && co.fix && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
   }
 
@@ -184,18 +235,17 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
       const std::string before = text;
       apply_edits(text, edits);
       if (text == before) continue;
-      for (const auto& [line, names] : it->second) t.suppressions += names.size();
-      ++t.suppressed_files;
       auto disk = reader.disk_path(u.sd_path);
+      std::string err;
       if (!disk) {
         t.stdout_text = text;
-        continue;
-      }
-      std::string err;
-      if (!write_atomic(*disk, before, text, &err)) {
+      } else if (!write_atomic(*disk, before, text, job.card ? std::optional(job.card->root) : std::nullopt, &err)) {
         error(fmt::format("{}: {}", u.source->display_path(), err));
         t.io_error = true;
+        continue;  // not counted: nothing was added to this file
       }
+      for (const auto& [line, names] : it->second) t.suppressions += names.size();
+      ++t.suppressed_files;
     }
     if (job.stdin_bytes && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
     return true;
@@ -243,7 +293,8 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   std::vector<std::string> paths = co.paths;
   if (paths.empty()) paths.push_back(".");
   GitIgnore gitignore;
-  plan(paths, co.plan, settings, gitignore, jobs, io_error);
+  PlanStats stats;
+  plan(paths, co.plan, settings, gitignore, jobs, io_error, &stats);
   if (settings.config_error()) {
     error(settings.config_error()->str());
     return kExitError;
@@ -268,6 +319,24 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     }
   }
   io_error = io_error || t.io_error;
+  if (t.lone_hint)
+    std::cerr << "rrflint: note: a file with no SD card around it (no sys/config.g) is linted on its own, as a macro "
+                 "that runs after boot; to lint it as a config.g, run `rrflint check --stdin-filename config.g - < FILE`\n";
+  // Never a pass over nothing: a run that linted no file is an error, unless every path was left out on purpose
+  // with --force-exclude (a pre-commit hook passes every changed file, excluded ones too).
+  if (t.linted == 0) {
+    const bool all_forced = stats.force_excluded > 0 && stats.force_excluded == stats.named;
+    if (all_forced && !io_error) {
+      if (t.stdout_text) std::cout << *t.stdout_text;
+      std::cerr << "rrflint: every path given is excluded (--force-exclude): nothing to lint\n";
+      return kExitClean;
+    }
+    if (t.stdout_text) std::cout << *t.stdout_text;  // --fix on stdin: an editor must get its text back
+    for (const std::string& why : stats.empty) error(why);
+    error("no file was linted");
+    return kExitError;
+  }
+  for (const std::string& why : stats.empty) warning(why);
 
   if (co.add_suppressions) {
     if (t.stdout_text) std::cout << *t.stdout_text;

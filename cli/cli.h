@@ -90,11 +90,13 @@ struct Job {
   fs::path standalone;                     // a lone file
   std::set<std::string> only;              // lower-cased SD paths to report, unless report_all
   bool report_all = false;                 // every file of the card (minus exclusions and .gitignore)
+  bool named_despite_exclusion = false;    // report_all although the card's folder is excluded: exclusions off
   std::optional<std::string> stdin_bytes;  // content for `-`
   std::string stdin_sd_path;
   std::string title;
   bool explicit_path = false;              // named on the command line (exclusions only with --force-exclude)
   bool excluded = false;                   // stdin excluded by --force-exclude: not linted (--fix echoes it)
+  std::map<std::string, std::string> named;  // files of the card named on the command line: lower SD path -> as named
   std::shared_ptr<DirCache> dirs;          // the folder listings the plan made, for the card's reader
 };
 
@@ -132,10 +134,19 @@ class GitIgnore {
   std::unordered_map<std::string, Folder> folders_;
 };
 
+/// What the plan saw besides the jobs: how many paths or files it left out on purpose, and the paths named on
+/// the command line that led to no file at all.
+struct PlanStats {
+  size_t excluded = 0;             // files and folders left out by `exclude` or .gitignore
+  size_t force_excluded = 0;       // paths named on the command line and left out by --force-exclude
+  size_t named = 0;                // paths named on the command line (stdin included)
+  std::vector<std::string> empty;  // paths (as named) under which nothing was found to lint, with the reason
+};
+
 /// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
 /// its answers for the rest of the run.
 void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
-          std::vector<Job>& jobs, bool& io_error);
+          std::vector<Job>& jobs, bool& io_error, PlanStats* stats = nullptr);
 
 /// The FileReader of a job, with in-memory replacements (fixed text) on top.
 class JobReader : public FileReader {
@@ -162,13 +173,18 @@ struct FixOptions {
 };
 
 /// Picks non-overlapping fixes (whole fixes, never part of one) among `diags` that `allowed` accepts, applies
-/// them to `texts` (by FileId), keeping each file's line-ending style. Returns how many fixes were applied.
+/// them to `texts` (by FileId), keeping each file's line-ending style. Returns how many fixes were applied;
+/// `per_file` gets them by the file of each fix's first edit.
 size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
-                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts);
+                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts,
+                   std::map<FileId, size_t>* per_file = nullptr);
 
 /// Writes `bytes` to `path` without ever leaving it half written: a temporary file in the same folder, then a
-/// rename. Refuses (returns false with `err`) when the file changed on disk since `expected` was read.
-bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes, std::string* err);
+/// rename, keeping the file's mode, owner and group. Refuses (returns false with `err`, writing nothing) when the
+/// file changed on disk since `expected` was read, when it is read-only (no write bit) or, without root, not
+/// writable in place, when its owner cannot be kept, and when it is a symbolic link to a file outside `root`.
+bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
+                  const std::optional<fs::path>& root, std::string* err);
 
 /// A unified diff (`--- a/x`, `+++ b/x`, 3 lines of context); empty when the texts are equal.
 std::string unified_diff(std::string_view before, std::string_view after, const std::string& path);

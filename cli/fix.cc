@@ -37,7 +37,8 @@ std::string with_eol(const std::string& s, std::string_view eol) {
 }  // namespace
 
 size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
-                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts) {
+                   const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts,
+                   std::map<FileId, size_t>* per_file) {
   std::map<FileId, std::vector<Span>> taken;
   std::map<FileId, std::vector<Edit>> accepted;
   size_t applied = 0;
@@ -67,6 +68,7 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
       copy.replacement = with_eol(e.replacement, dominant_eol(sm.get(e.loc.file)));
       accepted[e.loc.file].push_back(std::move(copy));
     }
+    if (per_file) ++(*per_file)[d.fix->edits.front().loc.file];
     ++applied;
   }
   for (auto& [file, edits] : accepted) {
@@ -81,39 +83,71 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
   return applied;
 }
 
-bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes, std::string* err) {
-  std::error_code ec;
-  // Write through a symbolic link to its target rather than replacing the link.
-  const fs::path target = fs::is_symlink(path, ec) ? fs::canonical(path, ec) : path;
-  std::string now_err;
-  auto now = read_file(target, &now_err);
-  if (!now || *now != expected) {
-    if (err) *err = now ? "changed on disk while rrflint was running; not written" : now_err;
+bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
+                  const std::optional<fs::path>& root, std::string* err) {
+  auto fail = [&](std::string why) {
+    if (err) *err = std::move(why);
     return false;
+  };
+  std::error_code ec;
+  // A symbolic link is written through to its target (the link stays), but never to a target outside the linted
+  // folder: --fix writes nothing outside what was linted.
+  fs::path target = path;
+  if (fs::is_symlink(path, ec)) {
+    target = fs::canonical(path, ec);
+    if (ec) return fail("a symbolic link that leads nowhere: not written");
+    if (root) {
+      const fs::path real_root = fs::canonical(*root, ec);
+      if (ec || !path_below(target.native(), real_root.native()))
+        return fail(fmt::format("a symbolic link to {}, outside the linted folder: not written", target.string()));
+    }
   }
   struct stat st {};
-  const bool have_mode = ::stat(target.c_str(), &st) == 0;
+  if (::stat(target.c_str(), &st) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (!S_ISREG(st.st_mode)) return fail("not a regular file: not written");
+  // A file the user made read-only stays as it is, root or not: a rename would replace it regardless of its mode.
+  if ((st.st_mode & 0222) == 0) return fail("read-only: not written (make it writable to let --fix change it)");
+  // Without root, a file this user could not write in place is not replaced through the folder either.
+  if (::geteuid() != 0 && ::access(target.c_str(), W_OK) != 0)
+    return fail(fmt::format("not writable ({}): not written", std::strerror(errno)));
+  std::string now_err;
+  auto now = read_file(target, &now_err);
+  if (!now) return fail(now_err + ": not written");
+  if (*now != expected) return fail("changed on disk while rrflint was running: not written");
+
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::string tmpl = (dir / ("." + target.filename().string() + ".rrflint-XXXXXX")).string();
-  int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) {
-    if (err) *err = fmt::format("cannot create a temporary file in {}: {}", dir.string(), std::strerror(errno));
-    return false;
-  }
+  const int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) return fail(fmt::format("cannot create a temporary file in {} ({}): not written", dir.string(), std::strerror(errno)));
+  int write_errno = 0;
   size_t done = 0;
   while (done < bytes.size()) {
-    ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n <= 0) break;
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      write_errno = n < 0 ? errno : EIO;
+      break;
+    }
     done += static_cast<size_t>(n);
   }
-  bool ok = done == bytes.size() && ::fsync(fd) == 0;
-  if (have_mode) ok = ok && ::fchmod(fd, st.st_mode & 07777) == 0;
-  ok = ::close(fd) == 0 && ok;
-  if (!ok || ::rename(tmpl.c_str(), target.c_str()) != 0) {
-    if (err) *err = fmt::format("cannot write: {}", std::strerror(errno));
+  if (!write_errno && ::fsync(fd) != 0) write_errno = errno;
+  // The same mode, owner and group as the file it replaces; a file whose owner cannot be kept is not replaced.
+  bool kept = ::fchmod(fd, st.st_mode & 07777) == 0;
+  if (::fchown(fd, st.st_uid, st.st_gid) != 0) kept = false;
+  if (::close(fd) != 0 && !write_errno) write_errno = errno;
+  auto give_up = [&](std::string why) {
     ::unlink(tmpl.c_str());
-    return false;
-  }
+    return fail(std::move(why));
+  };
+  if (write_errno) return give_up(fmt::format("cannot write ({}): not written", std::strerror(write_errno)));
+  if (!kept) return give_up("cannot keep its owner, group or mode: not written");
+  // Changed since it was read (the content check above leaves a window while the new text is written)?
+  struct stat again {};
+  if (::stat(target.c_str(), &again) != 0 || again.st_ino != st.st_ino || again.st_size != st.st_size ||
+      again.st_mtim.tv_sec != st.st_mtim.tv_sec || again.st_mtim.tv_nsec != st.st_mtim.tv_nsec)
+    return give_up("changed on disk while rrflint was running: not written");
+  if (::rename(tmpl.c_str(), target.c_str()) != 0)
+    return give_up(fmt::format("cannot replace it ({}): not written", std::strerror(errno)));
   return true;
 }
 

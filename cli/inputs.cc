@@ -344,7 +344,9 @@ std::optional<std::string> JobReader::disk_path(std::string_view sd_path) const 
 }
 
 void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
-          std::vector<Job>& jobs, bool& io_error) {
+          std::vector<Job>& jobs, bool& io_error, PlanStats* stats_out) {
+  PlanStats own;
+  PlanStats& stats = stats_out ? *stats_out : own;
   std::error_code ec;
   const std::string cwd = absolute_normal(fs::current_path(ec));
   std::map<std::string, size_t> by_root;               // canonical sys folder -> job
@@ -379,11 +381,16 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
   // Files and folders met in a walk (absolute, normal); `link`: the file is a symbolic link.
   std::vector<std::string> found;
   std::vector<bool> link;
+  bool walk_excludes = true;  // apply `exclude` in this walk (off for a folder named on purpose, see below)
   auto walk = [&](auto& self, const std::string& dir, int depth, bool below_macros) -> void {
     for (const DirEntry& e : folders.entries(dir)) {
       std::string path = join_path(dir, e.name);
       if (e.kind == DirEntry::Kind::Dir) {
-        if (depth > 12 || e.name.starts_with(".") || settings.excluded(join_path(path, kAnyChild)) || e.link) continue;
+        if (depth > 12 || e.name.starts_with(".") || e.link) continue;
+        if (walk_excludes && settings.excluded(join_path(path, kAnyChild))) {
+          ++stats.excluded;
+          continue;
+        }
         self(self, path, depth + 1, below_macros || to_lower(e.name) == "macros");
       } else if (e.kind == DirEntry::Kind::File && candidate(e.name, below_macros)) {
         found.push_back(std::move(path));
@@ -393,6 +400,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
   };
 
   for (const std::string& p : paths) {
+    ++stats.named;
     if (p == "-") {
       std::string bytes((std::istreambuf_iterator<char>(std::cin)), {});
       fs::path name = po.stdin_filename.empty() ? fs::path("stdin.g") : fs::path(po.stdin_filename);
@@ -409,6 +417,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       if (!po.stdin_filename.empty()) {
         const std::string abs = absolute_normal(name);
         if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) {
+          ++stats.force_excluded;
           lone_stdin(true);
           continue;
         }
@@ -432,13 +441,23 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     }
     const std::string abs = absolute_normal(path);
     if (fs::is_directory(path, ec)) {
-      if (po.force_exclude && settings.excluded(join_path(abs, kAnyChild))) continue;
+      // A folder named on purpose is linted even when `exclude` or .gitignore leaves it out (as an explicit file
+      // is), unless --force-exclude; what is excluded below it stays excluded.
+      const bool folder_excluded = settings.excluded(join_path(abs, kAnyChild));
+      const bool folder_ignored = po.respect_gitignore && gitignore.ignored(join_path(abs, kAnyChild));
+      if (po.force_exclude && (folder_excluded || folder_ignored)) {
+        ++stats.force_excluded;
+        continue;
+      }
       if (auto card = card_at(path)) {
         // A folder holding config.g inside a card's sys/ (a module folder) is walked as part of that card.
         const auto& outer = folders.sd_root_above(abs);
         const bool nested = outer && fs::equivalent(card->sys_dir, abs, ec) && !fs::equivalent(outer->sys_dir, abs, ec);
         if (!nested) {
-          job_for_card(*card, p).report_all = true;
+          Job& j = job_for_card(*card, p);
+          j.report_all = true;
+          // Named on purpose although `exclude` or .gitignore leaves the folder out: its files are reported.
+          if (folder_excluded || folder_ignored) j.named_despite_exclusion = true;
           continue;
         }
       }
@@ -448,12 +467,22 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
       for (const fs::path& part : path) below_macros = below_macros || to_lower(part.string()) == "macros";
       found.clear();
       link.clear();
+      walk_excludes = !folder_excluded;
+      const size_t folders_before = stats.excluded;
       walk(walk, abs, 0, below_macros);
+      const size_t folders_left_out = stats.excluded - folders_before;
+      walk_excludes = true;
       if (settings.config_error()) return;
-      if (po.respect_gitignore) gitignore.prefetch(found);
+      const bool use_gitignore = po.respect_gitignore && !folder_ignored;
+      if (use_gitignore) gitignore.prefetch(found);
+      size_t placed = 0, left_out = 0;
       for (size_t i = 0; i < found.size(); ++i) {
         const std::string& f = found[i];
-        if (settings.excluded(f) || (po.respect_gitignore && gitignore.ignored(f))) continue;
+        if ((!folder_excluded && settings.excluded(f)) || (use_gitignore && gitignore.ignored(f))) {
+          ++left_out;
+          continue;
+        }
+        ++placed;
         const Folders::Place at = folders.place(f, link[i]);
         if (!at.card || !at.sd || !machine_path(*at.sd)) {
           lone(f, show(f), false);
@@ -463,10 +492,21 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
         if (path_below(at.card->root.native(), abs)) j.report_all = true;  // the walk covers the whole card
         else j.only.insert(to_lower(*at.sd));
       }
+      stats.excluded += left_out;
+      if (placed == 0)
+        stats.empty.push_back(
+            left_out + folders_left_out
+                ? fmt::format("{}: nothing to lint: everything below it is excluded ({} file{} and {} folder{} left "
+                              "out by `exclude` or .gitignore)",
+                              p, left_out, left_out == 1 ? "" : "s", folders_left_out, folders_left_out == 1 ? "" : "s")
+                : fmt::format("{}: no G-code here (no sys/config.g, no *.g file, no macro)", p));
       continue;
     }
     // An explicit file: linted even when excluded, unless --force-exclude.
-    if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) continue;
+    if (po.force_exclude && (settings.excluded(abs) || (po.respect_gitignore && gitignore.ignored(abs)))) {
+      ++stats.force_excluded;
+      continue;
+    }
     std::string err;
     if (!probe_file(p, &err)) {
       error(fmt::format("{}: {}", p, err));
@@ -476,6 +516,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
       Job& j = job_for_card(*at.card, p);
       j.only.insert(to_lower(*at.sd));
+      j.named.emplace(to_lower(*at.sd), p);
       j.explicit_path = true;
       continue;
     }

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
@@ -47,9 +48,15 @@ std::vector<std::string> split_commas(const std::vector<std::string>& in) {
 
 // Checks what the command line names before any file is read. False (with a message) on a bad value.
 bool validate(CliOptions& c) {
-  if (!c.firmware.empty() && !Version::parse(c.firmware)) {
-    error(fmt::format("--firmware: '{}' is not a version (use e.g. 3.5 or 3.4.6)", c.firmware));
-    return false;
+  if (!c.firmware.empty()) {
+    std::string warn, err;
+    auto v = parse_target_version(c.firmware, &warn, &err);
+    if (!v) {
+      error("--firmware: " + err);
+      return false;
+    }
+    if (!warn.empty()) warning("--firmware: " + warn);
+    c.firmware = v->str();  // what the rest of the run reads back with Version::parse
   }
   if (!c.board.empty() && !parse_board(c.board)) {
     error(fmt::format("--board: unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", c.board));
@@ -82,6 +89,19 @@ int main(int argc, char** argv) {
       continue;
     }
     ++it;
+  }
+  // An unknown command gets its own message (CLI11 would say that a subcommand is required).
+  if (args.size() > 1 && !args[1].starts_with("-")) {
+    static const char* const kCommands[][2] = {{"check", "lint SD cards, sys folders, repositories or files"},
+                                               {"config", "print the effective settings and where each came from"},
+                                               {"model", "print the machine model the boot sequence builds"},
+                                               {"rule", "print a rule's documentation"}};
+    if (std::none_of(std::begin(kCommands), std::end(kCommands), [&](const auto& c) { return args[1] == c[0]; })) {
+      std::string list;
+      for (const auto& c : kCommands) list += fmt::format("\n  {:<8}{}", c[0], c[1]);
+      error(fmt::format("unknown command '{}'; the commands are:{}\n(see `rrflint --help`)", args[1], list));
+      return kExitError;
+    }
   }
   std::vector<char*> argv2;
   for (std::string& a : args) argv2.push_back(a.data());
@@ -202,7 +222,16 @@ int main(int argc, char** argv) {
     SourceManager sm;
     JobReader reader(job);
     MachineResult r = lint_machine(sm, reader, eff.lint);
-    for (const LoadProblem& p : r.machine->problems()) warning(fmt::format("{}: {}", p.display, p.message));
+    bool config_unreadable = false;
+    for (const LoadProblem& p : r.machine->problems()) {
+      const bool is_config = to_lower(p.sd_path) == to_lower(eff.lint.sys_dir + "/config.g");
+      (is_config ? error : warning)(fmt::format("{}: {}", p.display, p.message));
+      config_unreadable = config_unreadable || is_config;
+    }
+    if (config_unreadable || r.machine->unit_count() == 0) {
+      if (!config_unreadable) error(fmt::format("{}: no G-code file to build a model from", model_path));
+      return kExitError;
+    }
     if (model_format == "json") render_model_json(std::cout, sm, r, job.title);
     else render_model_text(std::cout, sm, r, job.title);
     return kExitClean;

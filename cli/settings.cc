@@ -33,7 +33,10 @@ std::shared_ptr<const Config> Settings::config_for(const std::string& dir) {
   auto [it, unread] = loaded_.try_emplace(file->lexically_normal().string());
   if (unread) {
     ConfigError err;
-    if (auto cfg = load_config(*file, &err)) it->second = std::make_shared<const Config>(std::move(*cfg));
+    if (auto cfg = load_config(*file, &err)) {
+      for (const std::string& w : cfg->warnings) warning(w);
+      it->second = std::make_shared<const Config>(std::move(*cfg));
+    }
     else if (!error_) error_ = err;
   }
   return memo->second = it->second;

@@ -105,8 +105,10 @@ struct Loader {
         if (!v.is_string())
           return fail(abs, v.source(), "'firmware' must be a string such as \"3.5\" (a TOML number loses digits: 3.10 is 3.1)");
         string_value(abs, v, key, s);
-        auto ver = Version::parse(s);
-        if (!ver) return fail(abs, v.source(), fmt::format("'firmware': '{}' is not a version (use e.g. \"3.5\" or \"3.4.6\")", s));
+        std::string warn, why;
+        auto ver = parse_target_version(s, &warn, &why);
+        if (!ver) return fail(abs, v.source(), "'firmware': " + why);
+        if (!warn.empty()) cfg.warnings.push_back(fmt::format("{}: 'firmware': {}", abs.string(), warn));
         cfg.firmware = {*ver, origin(abs, at)};
       } else if (key == "board") {
         std::string s;

@@ -70,6 +70,7 @@ struct Config {
   std::vector<SelectionLayer> selection;
   std::map<std::string, Setting<Severity>> severity;  // by rule code
   Setting<Version> firmware;
+  std::vector<std::string> warnings;  // things to tell the user that do not stop the run (a firmware newer than known)
   Setting<Board> board;
   Setting<Severity> fail_on;
   Setting<bool> tool_changer;

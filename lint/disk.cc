@@ -30,8 +30,10 @@ const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_vie
 bool has_config(const fs::path& dir) { return has_config(list_dir(dir)); }
 
 bool has_config(const std::vector<DirEntry>& entries) {
+  // Anything called config.g but a folder: a config.g that is a FIFO or a dangling link still makes a card, whose
+  // config.g is then reported as unreadable (never silently skipped).
   const DirEntry* c = find_entry(entries, "config.g");
-  return c && c->kind == DirEntry::Kind::File;
+  return c && c->kind != DirEntry::Kind::Dir;
 }
 
 std::vector<DirEntry> list_dir(const std::string& dir) {
@@ -85,19 +87,31 @@ std::optional<std::string> path_below(std::string_view abs, std::string_view bas
 
 namespace {
 
-// Opens `path` for reading as read_file does; -1 with `error` set when it cannot (or it is a folder).
+// What a file that is not a regular file is, for a message.
+const char* kind_of(mode_t m) {
+  if (S_ISDIR(m)) return "is a directory";
+  if (S_ISFIFO(m)) return "is a FIFO (named pipe), not a regular file: not read";
+  if (S_ISSOCK(m)) return "is a socket, not a regular file: not read";
+  if (S_ISCHR(m) || S_ISBLK(m)) return "is a device, not a regular file: not read";
+  return "is not a regular file: not read";
+}
+
+// Opens `path` for reading as read_file does; -1 with `error` set when it cannot, or when it is not a regular
+// file. A FIFO or a device is never read: opening a FIFO blocks until a writer comes (O_NONBLOCK makes the open
+// return at once, and the fstat then refuses it), and a device may never end.
 int open_readable(const std::string& path, struct stat& st, std::string* error) {
   auto fail = [&](const char* why) {
     if (error) *error = why;
     return -1;
   };
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd < 0) {
     if (!error) return -1;
-    if (::stat(path.c_str(), &st) != 0) return fail("no such file");
-    return fail(S_ISDIR(st.st_mode) ? "is a directory" : "permission denied or unreadable");
+    if (::stat(path.c_str(), &st) != 0) return fail(errno == ELOOP ? "too many levels of symbolic links" : "no such file");
+    if (!S_ISREG(st.st_mode)) return fail(kind_of(st.st_mode));
+    return fail("permission denied");
   }
-  const char* why = ::fstat(fd, &st) != 0 ? "read error" : S_ISDIR(st.st_mode) ? "is a directory" : nullptr;
+  const char* why = ::fstat(fd, &st) != 0 ? "read error" : !S_ISREG(st.st_mode) ? kind_of(st.st_mode) : nullptr;
   if (why) {
     ::close(fd);
     return fail(why);
@@ -292,12 +306,12 @@ std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
   std::vector<std::string> out;
   auto dir = locate(sd_dir);
   struct stat st;
-  if (!dir || ::stat(dir->c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return out;
   std::string base(sd_dir);
   if (!base.ends_with("/")) base += '/';
-  list_below(*dir, base, 0, out);
+  // The folder may not exist on disk: a buffer from stdin or an editor placed in a card that is not there yet.
+  if (dir && ::stat(dir->c_str(), &st) == 0 && S_ISDIR(st.st_mode)) list_below(*dir, base, 0, out);
   for (const auto& [k, v] : overlay_)
-    if (k.starts_with(to_lower(std::string(sd_dir)) + "/")) out.push_back(k);
+    if (k.starts_with(to_lower(base))) out.push_back(k);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

@@ -126,3 +126,30 @@ char highest_lowercase_axis(Board b, Version v) {
 int default_extruders(Version v) { return v >= Version(3, 3, 0, 0, 0) ? 0 : 1; }
 
 }  // namespace rrflint
+
+namespace rrflint {
+
+std::string known_versions() {
+  return fmt::format("1.x, 2.0x, 3.0 to {}.{}, written as 3.5, 3.4.6, 3.5.0beta2, 3.5.0-beta.2, 3.01-RC3 or 2.02RC2",
+                     kLatestVersion.major, kLatestVersion.minor);
+}
+
+std::optional<Version> parse_target_version(std::string_view text, std::string* warning, std::string* error) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  auto v = Version::parse(text);
+  if (!v || v->major < 1) {
+    if (error)
+      *error = fmt::format("'{}' is not a firmware version rrflint knows (known: {})", text, known_versions());
+    return std::nullopt;
+  }
+  if (*v > kLatestVersion) {
+    if (warning)
+      *warning = fmt::format("firmware {} is newer than the newest version rrflint knows ({}): linted as {}", text,
+                             kLatestVersion.str(), kLatestVersion.str());
+    return kLatestVersion;
+  }
+  return v;
+}
+
+}  // namespace rrflint

@@ -57,4 +57,12 @@ char highest_lowercase_axis(Board b, Version v);
 /// Extruders that exist before any M584 E: 0 from 3.3, 1 in 3.0–3.2.
 int default_extruders(Version v);
 
+/// A firmware target as users write it (`--firmware`, `firmware =` in .rrflint.toml): "3.5", "3.4.6", "3.5.0beta2",
+/// "3.5.0-beta.2", "3.01-RC3", "2.02RC2". A version newer than kLatestVersion is taken as kLatestVersion, with a
+/// `warning`; text that is not a version, or a version older than 1.0, gives nullopt and an `error` that lists the
+/// known versions.
+std::optional<Version> parse_target_version(std::string_view text, std::string* warning, std::string* error);
+/// The firmware versions rrflint knows, for messages: "1.x, 2.0x, 3.0 to 3.6".
+std::string known_versions();
+
 }  // namespace rrflint

@@ -96,23 +96,49 @@ bool looks_binary(std::string_view bytes) {
   return nul > 16 || (nul + ctrl) * 10 > n;
 }
 
+std::string binary_reason(std::string_view bytes) {
+  const auto b = [&](size_t i) { return i < bytes.size() ? static_cast<unsigned char>(bytes[i]) : 0x100u; };
+  // UTF-16: a byte-order mark, or ASCII text with every other byte NUL (a Windows editor's "Unicode").
+  bool utf16 = (b(0) == 0xFF && b(1) == 0xFE) || (b(0) == 0xFE && b(1) == 0xFF);
+  if (!utf16 && bytes.size() >= 8) {
+    // One half of the bytes nearly all NUL, the other half nearly all printable ASCII or line ends.
+    size_t zeros[2] = {0, 0}, text[2] = {0, 0};
+    const size_t n = std::min<size_t>(bytes.size() & ~size_t{1}, 512);
+    for (size_t i = 0; i < n; ++i) {
+      const unsigned char c = static_cast<unsigned char>(bytes[i]);
+      zeros[i % 2] += c == 0;
+      text[i % 2] += (c >= 0x20 && c < 0x7F) || c == '\t' || c == '\n' || c == '\r';
+    }
+    for (int odd = 0; odd < 2; ++odd)
+      utf16 = utf16 || (zeros[odd] * 10 >= n / 2 * 9 && text[1 - odd] * 10 >= n / 2 * 9);
+  }
+  if (utf16) return "UTF-16 text, which RRF reads as binary (NUL bytes): not linted; save the file as UTF-8";
+  return "binary file (NUL bytes), not G-code: not linted";
+}
+
+void Machine::add_problem(std::string_view sd_path, const std::string& display, std::string message) {
+  // An empty stand-in source, so that a finding can point at the file that could not be linted.
+  const SourceFile& stand_in = sources_.add(display, std::string(sd_path), TextBuffer(std::string()));
+  problems_.push_back({std::string(sd_path), display, std::move(message), stand_in.id()});
+}
+
 const FileUnit* Machine::load(std::string_view sd_path) {
   const std::string key = to_lower(sd_path);
   if (auto it = by_path_.find(key); it != by_path_.end()) return it->second < 0 ? nullptr : units_[it->second].get();
   ReadResult r = reader_.read(sd_path);
   if (r.status != ReadResult::Status::Ok) {
     by_path_[key] = -1;
-    if (r.status == ReadResult::Status::Error) problems_.push_back({std::string(sd_path), r.display, r.error});
+    if (r.status == ReadResult::Status::Error) add_problem(sd_path, r.display, r.error);
     return nullptr;
   }
   if (looks_binary(r.bytes)) {
     by_path_[key] = -1;
-    problems_.push_back({std::string(sd_path), r.display, "binary file (NUL bytes), not G-code: not linted"});
+    add_problem(sd_path, r.display, binary_reason(r.bytes));
     return nullptr;
   }
   if (r.bytes.size() >= UINT32_MAX - 1) {
     by_path_[key] = -1;
-    problems_.push_back({std::string(sd_path), r.display, "file larger than 4 GiB: not linted"});
+    add_problem(sd_path, r.display, "file larger than 4 GiB: not linted");
     return nullptr;
   }
   auto u = std::make_unique<FileUnit>();

@@ -50,8 +50,13 @@ class MemoryReader : public FileReader {
 /// another volume ("1:/…").
 std::optional<std::string> resolve_sd_path(std::string_view dir, std::string_view name, bool* outside_root = nullptr);
 
-/// Is this byte string a binary (non-text) file? NUL bytes with many other control characters.
+/// Is this byte string a binary (non-text) file? Only the first 8 KiB are looked at: it is binary when they hold
+/// a NUL byte and either more than 16 NUL bytes or more than 10 % NUL and other control bytes (TAB, LF, CR and FF
+/// do not count). A text file with a few stray NUL bytes is linted, and each NUL is a syntax error (RRF ends the
+/// line there).
 bool looks_binary(std::string_view bytes);
+/// Why a file that looks_binary is not linted, for the message (names UTF-16).
+std::string binary_reason(std::string_view bytes);
 
 struct FileUnit {
   const SourceFile* source = nullptr;
@@ -60,10 +65,12 @@ struct FileUnit {
   uint32_t index = 0;  // position in Machine's unit list
 };
 
+/// A file of the machine that exists but could not be linted (unreadable, binary, not a regular file, too large).
 struct LoadProblem {
   std::string sd_path;
   std::string display;
   std::string message;
+  FileId file = kNoFile;  // an empty stand-in source for the file, for findings about it
 };
 
 class Machine {
@@ -93,6 +100,7 @@ class Machine {
  private:
   SourceManager& sources_;
   FileReader& reader_;
+  void add_problem(std::string_view sd_path, const std::string& display, std::string message);
   std::vector<std::unique_ptr<FileUnit>> units_;
   std::map<std::string, int32_t> by_path_;  // lower-cased SD path -> unit index, or -1 when missing
   std::vector<LoadProblem> problems_;

@@ -38,13 +38,29 @@ Call each macro from one place only, or guard recursive calls with a condition t
 };
 
 void check(const EndContext& cx, Sink& out) {
+  std::set<std::set<std::string>> seen;  // the files of each cycle reported: one finding per cycle
   for (const GraphEvent& e : cx.graph.events) {
     if (e.kind != GraphEvent::Kind::Cycle) continue;
     if (cx.graph.nodes[e.node].maybe) continue;  // a condition may break it
-    out.report(kMeta, event_path_loc(cx, e),
-               fmt::format("'{}' is already running when this M98 calls it again: the calls repeat until RRF's nesting "
-                           "limit aborts every running file",
-                           e.path));
+    // The calls that make the cycle: up the chain from this call to the call that started the file called again.
+    const std::vector<NodeId> chain = call_chain(cx.graph, e.node);
+    const std::string again = to_lower(e.path);
+    std::vector<NodeId> calls;
+    std::set<std::string> files{again, to_lower(cx.machine.unit(cx.graph.nodes[e.node].unit).sd_path)};
+    for (NodeId site : chain) {
+      const Node& entered = cx.graph.nodes[site];
+      calls.push_back(site);
+      files.insert(to_lower(cx.machine.unit(entered.unit).sd_path));
+      if (to_lower(cx.machine.unit(entered.unit).sd_path) == again) break;
+    }
+    if (!seen.insert(files).second) continue;
+    Report r = out.report(kMeta, event_path_loc(cx, e),
+                          fmt::format("'{}' is already running when this M98 calls it again: the calls repeat until "
+                                      "RRF's nesting limit aborts every running file",
+                                      e.path));
+    for (auto it = calls.rbegin(); it != calls.rend(); ++it)
+      r.note(cx.where(*it), fmt::format("{} runs the next file of the cycle here",
+                                        cx.machine.unit(cx.graph.nodes[*it].unit).sd_path));
   }
 }
 

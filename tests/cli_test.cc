@@ -219,14 +219,15 @@ TEST_CASE("cli: --fix applies safe fixes until stable, keeps line endings and pe
   CHECK(o.code == 0);
 }
 
-TEST_CASE("cli: --fix writes through symbolic links", "[cli][fix]") {
+TEST_CASE("cli: --fix writes through symbolic links inside the linted folder", "[cli][fix]") {
+  // A link out of the folder is refused: tests/robustness_test.cc.
   TempTree t;
-  t.write("real/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
+  t.write("p/shared/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
   fs::create_directories(t / "p/sys");
-  fs::create_symlink(t / "real/config.g", t / "p/sys/config.g");
-  run_rrflint(t.root(), "check p --fix");
+  fs::create_symlink(t / "p/shared/config.g", t / "p/sys/config.g");
+  CHECK(run_rrflint(t.root(), "check p --fix").code == 0);
   CHECK(fs::is_symlink(t / "p/sys/config.g"));
-  CHECK(t.read("real/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
+  CHECK(t.read("p/shared/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
 }
 
 TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there is something to fix", "[cli][fix]") {

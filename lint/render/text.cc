@@ -31,7 +31,8 @@ void snippet(std::ostream& os, const SourceManager& sm, const Location& loc, cha
              std::string_view color, const std::string& label = "") {
   if (loc.file == kNoFile) return;
   const SourceFile& f = sm.get(loc.file);
-  if (f.line_count() == 0) return;
+  // An empty file has nothing to show (also the stand-in of a file that could not be read).
+  if (f.line_count() == 0 || f.size() == 0) return;
   const uint32_t line0 = f.line_of(std::min(loc.span.begin, f.size()));
   const Span ls = f.line_span(line0);
   // Display text: tabs become one blank each so the carets line up; other controls become U+FFFD.

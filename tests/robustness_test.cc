@@ -1,0 +1,486 @@
+// The robustness matrix (README "Exit codes and bad input"): every kind of bad input, each with its exit code and
+// its message, run through the real binary. Nothing here may hang: run_rrflint_guarded kills a run after a generous
+// 60 s (speed belongs in bench/, this only turns a hang into a failure).
+//
+// How each row gets its condition, since CI runs as root (where file modes stop neither reads nor writes):
+//   unreadable files      setpriv drops to the user nobody for the run when the tests run as root
+//   full disk             a 64 KiB tmpfs in a private mount namespace (unshare -m) when the system allows it,
+//                         else a folder nobody may write to (run as nobody): both make the write fail
+//   changed during a run  write_atomic (the writer seam) called directly with stale text
+#include <catch2/catch.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "cli/cli.h"  // write_atomic (cli/fix.cc is built into the tests)
+#include "cli_util.h"
+
+using namespace rrflint;
+using namespace rrflint::test;
+
+namespace {
+
+const bool kRoot = ::geteuid() == 0;
+
+// `timeout` turns a hang into exit 124 (coreutils, in every Debian).
+Output run_guarded(const fs::path& cwd, const std::string& args, const std::string& stdin_text = "") {
+  return run_rrflint(cwd, args, "timeout 60", stdin_text);
+}
+
+// Runs rrflint as the user nobody (as root) or as this user, in a tree nobody may enter.
+Output run_unprivileged(TempTree& t, const std::string& args) {
+  ::chmod(t.root().c_str(), 0755);
+  const std::string as = kRoot ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
+  return run_rrflint(t.root(), args, "timeout 60 " + as);
+}
+
+// Runs a shell command in `cwd`, capturing its output.
+Output run_shell(const fs::path& cwd, const std::string& cmd) {
+  TempTree io;
+  const std::string out = (io / "out").string(), err = (io / "err").string();
+  const int status = std::system(("cd " + shell_quote(cwd.string()) + " && (" + cmd + ") > " + shell_quote(out) +
+                                  " 2> " + shell_quote(err) + " < /dev/null")
+                                     .c_str());
+  Output o;
+  o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  o.out = io.read("out");
+  o.err = io.read("err");
+  return o;
+}
+
+// How many lines of `text` contain `needle`; how many lines `text` has.
+size_t lines_count(const std::string& text, const std::string& needle) {
+  size_t n = 0;
+  for (size_t b = 0; b < text.size();) {
+    size_t e = text.find('\n', b);
+    if (e == std::string::npos) e = text.size();
+    if (text.substr(b, e - b).find(needle) != std::string::npos) ++n;
+    b = e + 1;
+  }
+  return n;
+}
+size_t lines_of_count(const std::string& text) { return lines_count(text, ""); }
+
+std::string repeat(const std::string& s, size_t n) {
+  std::string out;
+  out.reserve(s.size() * n);
+  for (size_t i = 0; i < n; ++i) out += s;
+  return out;
+}
+
+const std::string kGood = "M584 X0 Y1 Z2\nG28\n";
+
+}  // namespace
+
+TEST_CASE("matrix: nothing to lint is an error, never a pass", "[cli][matrix]") {
+  TempTree t;
+  fs::create_directories(t / "empty");
+  t.write("nosys/readme.txt", "G1 X0\n");
+  t.write("notes.txt", "G1 X0\n");
+  // An empty folder, a folder without sys/ or any .g file, a named file that is not G-code, a missing path.
+  for (const std::string path : {"empty", "nosys", "notes.txt", "missing"}) {
+    DYNAMIC_SECTION(path) {
+      auto o = run_guarded(t.root(), "check " + path);
+      CHECK(o.code == 2);
+      CHECK_FALSE(contains(o.out, "No problems found"));
+      CHECK(contains(o.err, "error"));
+      if (path != "missing") CHECK(contains(o.err, "no file was linted"));
+    }
+  }
+  auto o = run_guarded(t.root(), "check notes.txt");
+  CHECK(contains(o.err, "not a G-code file"));
+  o = run_guarded(t.root(), "check empty");
+  CHECK(contains(o.err, "empty: no G-code here"));
+  // A directory where a file is expected: a config.g that is a folder makes no card either.
+  fs::create_directories(t / "dircfg/sys/config.g");
+  o = run_guarded(t.root(), "check dircfg");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "no file was linted"));
+  // The same in JSON: nothing on stdout that a CI step could read as an empty, clean report.
+  o = run_guarded(t.root(), "check empty --format json");
+  CHECK(o.code == 2);
+  CHECK(o.out.empty());
+}
+
+TEST_CASE("matrix: a card whose config.g cannot be linted is an error; the other cards are still reported", "[cli][matrix]") {
+  TempTree t;
+  t.write("good/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");  // one RRF101 warning
+  t.write("bin/sys/config.g", std::string("\x7f" "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0\x3e\0\x01\0\0\0", 24) + repeat(std::string("\0\x01", 2), 64));
+  t.write("utf16/sys/config.g", std::string("\xff\xfeM\0" "5\0" "8\0" "4\0 \0X\0" "0\0\n\0", 18));
+  t.write("empty/sys/config.g", "");
+  SECTION("binary") {
+    auto o = run_guarded(t.root(), "check bin");
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "bin/sys/config.g: cannot lint config.g: binary file"));
+  }
+  SECTION("UTF-16 is named as such") {
+    auto o = run_guarded(t.root(), "check utf16");
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "UTF-16"));
+  }
+  SECTION("an empty config.g is linted: nothing in it is wrong") {
+    auto o = run_guarded(t.root(), "check empty");
+    CHECK(o.code == 0);
+    CHECK(contains(o.out, "No problems found in 1 file"));
+  }
+  SECTION("several cards: 2 if any card could not be linted, and the others are still reported") {
+    auto o = run_guarded(t.root(), "check good bin --format concise");
+    CHECK(o.code == 2);
+    CHECK(contains(o.out, "RRF101"));
+    CHECK(contains(o.err, "cannot lint config.g"));
+    o = run_guarded(t.root(), "check good empty");
+    CHECK(o.code == 1);  // findings, and every card linted
+    o = run_guarded(t.root(), "check empty good --fail-on error");
+    CHECK(o.code == 0);
+  }
+}
+
+TEST_CASE("matrix: a FIFO is never opened, named or found by walking", "[cli][matrix]") {
+  TempTree t;
+  fs::create_directories(t / "fifo/sys");
+  REQUIRE(::mkfifo((t / "fifo/sys/config.g").c_str(), 0644) == 0);
+  auto o = run_guarded(t.root(), "check fifo/sys/config.g");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "FIFO"));
+  o = run_guarded(t.root(), "check fifo");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "cannot lint config.g: is a FIFO"));
+  o = run_guarded(t.root(), "check .");  // a repository walk
+  CHECK(o.code == 2);
+  // A FIFO macro that config.g runs is a finding at the call.
+  t.write("m/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"pipe.g\"\n");
+  REQUIRE(::mkfifo((t / "m/sys/pipe.g").c_str(), 0644) == 0);
+  o = run_guarded(t.root(), "check m --format concise");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "config.g:2:5: error: macro file '/sys/pipe.g' cannot be linted: is a FIFO"));
+}
+
+TEST_CASE("matrix: unreadable files (run as nobody)", "[cli][matrix]") {
+  TempTree t;
+  t.write("p/sys/config.g", kGood);
+  t.write("q/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"tools.g\"\n");
+  t.write("q/sys/tools.g", "M563 P0 D0\n");
+  ::chmod((t / "p/sys/config.g").c_str(), 0);
+  ::chmod((t / "q/sys/tools.g").c_str(), 0);
+  auto o = run_unprivileged(t, "check p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "cannot lint config.g: permission denied"));
+  o = run_unprivileged(t, "check q --format concise");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "macro file '/sys/tools.g' cannot be linted: permission denied [RRF506 unreadable-macro]"));
+  o = run_unprivileged(t, "check q/sys/tools.g");  // named: an error of the run
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "permission denied"));
+}
+
+TEST_CASE("matrix: binary and text with bad bytes", "[cli][matrix]") {
+  TempTree t;
+  t.write("c/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"bin.g\"\n");
+  t.write("c/sys/bin.g", repeat(std::string("\0\x01\x02\x03", 4), 64));
+  t.write("c/macros/blob.g", repeat(std::string("\0", 1), 100));
+  auto o = run_guarded(t.root(), "check c --format concise");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "config.g:2:5: error: macro file '/sys/bin.g' cannot be linted: binary file"));
+  // A binary macro nothing runs: a finding at the file itself.
+  CHECK(contains(o.out, "macros/blob.g:1:1: error: file '/macros/blob.g' cannot be linted"));
+  // Named on the command line: an error of the run, and no "No problems found".
+  o = run_guarded(t.root(), "check c/sys/bin.g");
+  CHECK(o.code == 2);
+  CHECK_FALSE(contains(o.out, "No problems found"));
+  // The boundary: up to 16 NUL bytes in the first 8 KiB of a text file are line ends (RRF100 each), more make it
+  // binary.
+  const std::string line = "G1 X1 Y1 F3000 ; a move, long enough to keep the control bytes under a tenth\n";
+  t.write("n16/sys/config.g", "M584 X0 Y1 Z2\n" + repeat(std::string("G4 S0\0", 6) + line, 16));
+  t.write("n17/sys/config.g", "M584 X0 Y1 Z2\n" + repeat(std::string("G4 S0\0", 6) + line, 17));
+  o = run_guarded(t.root(), "check n16 --format concise");
+  CHECK(o.code == 1);
+  CHECK(lines_count(o.out, "NUL byte") == 16);
+  o = run_guarded(t.root(), "check n17");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "binary file"));
+}
+
+TEST_CASE("matrix: huge and deep input is linted without a crash or a hang", "[cli][matrix]") {
+  TempTree t;
+  SECTION("a 10 MB single line") {
+    t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM550 P\"" + std::string(10u << 20, 'a') + "\"\n");
+    auto o = run_guarded(t.root(), "check p --format concise");
+    CHECK(o.code == 1);
+    CHECK(contains(o.out, "RRF102 line-too-long"));
+  }
+  SECTION("a million lines") {
+    t.write("p/sys/config.g", "M584 X0 Y1 Z2\n" + repeat("G1 X1 Y2 F3000\n", 1000000));
+    auto o = run_guarded(t.root(), "check p");
+    CHECK(o.code == 0);
+    CHECK(contains(o.out, "No problems found in 1 file"));
+  }
+  SECTION("10,000 nested {") {
+    t.write("p/sys/config.g", "M584 X0 Y1 Z2\nG1 X" + std::string(10000, '{') + "1" + std::string(10000, '}') + "\n");
+    auto o = run_guarded(t.root(), "check p --format concise");
+    CHECK((o.code == 0 || o.code == 1));
+    CHECK(o.err.empty());
+  }
+  SECTION("10,000 nested if") {
+    std::string text = "M584 X0 Y1 Z2\n";
+    for (int i = 0; i < 10000; ++i) text += std::string(static_cast<size_t>(i), ' ') + "if true\n";
+    text += std::string(10000, ' ') + "G4 S0\n";
+    t.write("p/sys/config.g", text);
+    auto o = run_guarded(t.root(), "check p --format concise");
+    CHECK((o.code == 0 || o.code == 1));
+    CHECK(o.err.empty());
+  }
+}
+
+TEST_CASE("matrix: macro cycles and chains give one finding per cause", "[cli][matrix]") {
+  TempTree t;
+  t.write("cy/sys/config.g", "M98 P\"a.g\"\n");
+  t.write("cy/sys/a.g", "M98 P\"b.g\"\n");
+  t.write("cy/sys/b.g", "M98 P\"c.g\"\n");
+  t.write("cy/sys/c.g", "M98 P\"a.g\"\n");
+  auto o = run_guarded(t.root(), "check cy --firmware 3.5 --format json");
+  CHECK(o.code == 1);
+  CHECK(lines_count(o.out, "\"code\": \"RRF502\"") == 1);
+  o = run_guarded(t.root(), "check cy --firmware 3.5");
+  CHECK(lines_count(o.out, "runs the next file of the cycle here") == 2);  // a.g -> b.g, b.g -> c.g; c.g -> a.g is the finding
+  std::string chain;
+  t.write("ch/sys/config.g", "M98 P\"m0.g\"\n");
+  for (int i = 0; i < 2000; ++i) t.write("ch/sys/m" + std::to_string(i) + ".g", "M98 P\"m" + std::to_string(i + 1) + ".g\"\n");
+  t.write("ch/sys/m2000.g", "G4 S0\n");
+  o = run_guarded(t.root(), "check ch --firmware 3.5 --format concise");
+  CHECK(o.code == 1);
+  CHECK(lines_count(o.out, "RRF503") == 1);
+  CHECK(lines_of_count(o.out) == 1);
+}
+
+TEST_CASE("matrix: paths out of the root and symbolic link loops", "[cli][matrix]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"../../etc/passwd\"\n");
+  auto o = run_guarded(t.root(), "check p --format concise");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "RRF505 path-outside-root"));
+  CHECK_FALSE(contains(o.out, "root:"));  // nothing of /etc/passwd was read
+  t.write("l/sys/config.g", kGood);
+  fs::create_directory_symlink("loop", t / "l/sys/loop");
+  fs::create_symlink("b.g", t / "l/sys/a.g");
+  fs::create_symlink("a.g", t / "l/sys/b.g");
+  o = run_guarded(t.root(), "check l --format concise");
+  CHECK(o.code == 0);
+  o = run_guarded(t.root(), "check l/sys");
+  CHECK(o.code == 0);
+  o = run_guarded(t.root(), "check . --format concise");  // a walk over both: only p's finding
+  CHECK(o.code == 1);
+  CHECK(lines_of_count(o.out) == 1);
+}
+
+TEST_CASE("matrix: stdin and lone files", "[cli][matrix]") {
+  TempTree t;
+  // A name whose folder does not exist on disk is still linted: the buffer is always linted.
+  auto o = run_guarded(t.root(), "check - --stdin-filename sys/homeall.g --format concise", "M9999\n");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "sys/homeall.g:1:1"));
+  // stdin without a name, and a lone file: linted as a macro, and rrflint says so once, with the way to lint it
+  // as config.g.
+  o = run_guarded(t.root(), "check -", "M584 X0 Y1 Z2\n");
+  CHECK(o.code == 0);
+  CHECK(contains(o.err, "--stdin-filename config.g"));
+  t.write("a.g", "G4 S0\n");
+  t.write("b.g", "G4 S0\n");
+  o = run_guarded(t.root(), "check a.g b.g");
+  CHECK(o.code == 0);
+  CHECK(lines_count(o.err, "note:") == 1);
+  o = run_guarded(t.root(), "check - --stdin-filename config.g --format concise", "M9999\n");
+  CHECK(o.code == 1);
+  CHECK_FALSE(contains(o.err, "note:"));
+}
+
+TEST_CASE("matrix: exclusions: a folder named on purpose is linted; --force-exclude leaves it out, and exits 0 only "
+          "when every path was left out",
+          "[cli][matrix][walk]") {
+  TempTree t;
+  t.write(".gitignore", "old/\n");
+  t.write("old/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");
+  t.write("new/sys/config.g", kGood);
+  t.write(".rrflint.toml", "exclude = [\"draft\"]\n");
+  t.write("draft/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");
+  if (std::system(("git -C " + shell_quote(t.root().string()) + " init -q 2>/dev/null").c_str()) != 0) t.write(".git/HEAD", "");
+  auto o = run_guarded(t.root(), "check old --format concise");  // gitignored, named explicitly: linted
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "RRF101"));
+  o = run_guarded(t.root(), "check draft --format concise");  // excluded, named explicitly: linted
+  CHECK(o.code == 1);
+  o = run_guarded(t.root(), "check old draft --force-exclude");
+  CHECK(o.code == 0);
+  CHECK(contains(o.err, "every path given is excluded"));
+  CHECK_FALSE(contains(o.out, "No problems found"));
+  o = run_guarded(t.root(), "check old/sys/config.g --force-exclude");
+  CHECK(o.code == 0);
+  o = run_guarded(t.root(), "check old new --force-exclude");
+  CHECK(o.code == 0);
+  CHECK(contains(o.out, "No problems found in 1 file"));
+  // A walk whose every file is excluded lints nothing: an error, since nothing was named to be left out.
+  t.write("only/draft/sys/config.g", "M9999\n");
+  t.write("only/.rrflint.toml", "exclude = [\"draft\"]\n");
+  o = run_guarded(t.root(), "check only");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "excluded"));
+}
+
+TEST_CASE("matrix: --firmware spellings and unknown commands", "[cli][matrix]") {
+  TempTree t;
+  t.write("p/sys/config.g", kGood);
+  for (const std::string v : {"3.5", "3.5.0beta2", "3.5.0-beta.2", "3.01-RC3", "2.02RC2", "3.4.6", "1.0"}) {
+    DYNAMIC_SECTION(v) { CHECK(run_guarded(t.root(), "check p --firmware " + v).code == 0); }
+  }
+  auto o = run_guarded(t.root(), "check p --firmware 4.2");
+  CHECK(o.code == 0);
+  CHECK(contains(o.err, "newer than the newest version rrflint knows"));
+  for (const std::string v : {"banana", "0.9", "3.x"}) {
+    DYNAMIC_SECTION("bad " << v) {
+      o = run_guarded(t.root(), "check p --firmware " + v);
+      CHECK(o.code == 2);
+      CHECK(contains(o.err, "known: 1.x, 2.0x, 3.0 to"));
+    }
+  }
+  t.write(".rrflint.toml", "firmware = \"3.9.1\"\n");
+  o = run_guarded(t.root(), "check p");
+  CHECK(o.code == 0);
+  CHECK(contains(o.err, "newer than the newest version"));
+  t.write(".rrflint.toml", "firmware = \"three\"\n");
+  CHECK(run_guarded(t.root(), "check p").code == 2);
+  o = run_guarded(t.root(), "explain RRF301");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "unknown command 'explain'"));
+  CHECK(contains(o.err, "check"));
+  CHECK(contains(o.err, "rule"));
+}
+
+TEST_CASE("matrix: --fix never writes a read-only file, through a link out of the root, or over a full disk",
+          "[cli][matrix][fix]") {
+  TempTree t;
+  const std::string before = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\nM9999\n";
+  SECTION("read-only") {
+    t.write("p/sys/config.g", before);
+    ::chmod((t / "p/sys/config.g").c_str(), 0444);
+    auto o = run_guarded(t.root(), "check p --fix --format concise");
+    CHECK(o.code == 2);
+    CHECK(t.read("p/sys/config.g") == before);
+    CHECK(contains(o.err, "read-only: not written"));
+    CHECK_FALSE(contains(o.out, "Fixed"));
+    CHECK(contains(o.out, "RRF900"));  // the finding the fix would have removed is still reported
+    struct stat st {};
+    ::stat((t / "p/sys/config.g").c_str(), &st);
+    CHECK((st.st_mode & 0777) == 0444);
+  }
+  SECTION("a link out of the root") {
+    t.write("outside/config.g", before);
+    fs::create_directories(t / "p/sys");
+    fs::create_symlink(t / "outside/config.g", t / "p/sys/config.g");
+    auto o = run_guarded(t.root(), "check p --fix");
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "outside the linted folder"));
+    CHECK(t.read("outside/config.g") == before);
+    CHECK(fs::is_symlink(t / "p/sys/config.g"));
+  }
+  SECTION("as another user, a file it could not write in place") {
+    t.write("p/sys/config.g", before);
+    ::chmod((t / "p").c_str(), 0777);
+    ::chmod((t / "p/sys").c_str(), 0777);  // the folder would allow a rename
+    ::chmod((t / "p/sys/config.g").c_str(), 0644);
+    if (kRoot) {
+      auto o = run_unprivileged(t, "check p --fix");
+      CHECK(o.code == 2);
+      CHECK(contains(o.err, "not written"));
+      CHECK(t.read("p/sys/config.g") == before);
+    }
+  }
+  SECTION("a full disk") {
+    // A 64 KiB tmpfs in a private mount namespace, filled up; else a folder nobody may write to, run as nobody.
+    const bool tmpfs = kRoot && std::system("unshare -m true 2>/dev/null") == 0;
+    t.write("p/sys/config.g", before);
+    Output o;
+    if (tmpfs) {
+      const std::string script =
+          "mount -t tmpfs -o size=64k tmpfs p/sys && printf '%s' " + shell_quote(before) +
+          " > p/sys/config.g && (dd if=/dev/zero of=p/sys/fill bs=4k 2>/dev/null; true) && " +
+          shell_quote(RRFLINT_BINARY) + " check p --fix --format concise; echo \"rc=$?\"; cat p/sys/config.g";
+      o = run_shell(t.root(), "timeout 60 unshare -m sh -c " + shell_quote(script));
+      CHECK(contains(o.out, "rc=2"));
+      CHECK(contains(o.err, "No space left on device"));
+    } else {
+      ::chmod((t / "p/sys").c_str(), 0555);
+      ::chmod((t / "p/sys/config.g").c_str(), 0666);
+      o = run_unprivileged(t, "check p --fix --format concise");
+      CHECK(o.code == 2);
+      CHECK(contains(o.err, "cannot create a temporary file"));
+      ::chmod((t / "p/sys").c_str(), 0755);
+    }
+    CHECK(contains(o.err, "not written"));
+    CHECK(contains(o.out, before));  // the file on the (full) disk is whole
+    CHECK_FALSE(contains(o.out, "Fixed"));
+    CHECK(contains(o.out, "RRF900"));
+  }
+}
+
+TEST_CASE("write_atomic: refuses a file that changed since it was read, and keeps line endings and modes",
+          "[cli][matrix][fix]") {
+  TempTree t;
+  const fs::path p = t.write("sys/config.g", "G4 S0\r\nM9999");
+  ::chmod(p.c_str(), 0640);
+  std::string err;
+  CHECK_FALSE(cli::write_atomic(p, "something else", "new", t.root(), &err));
+  CHECK(contains(err, "changed on disk"));
+  CHECK(t.read("sys/config.g") == "G4 S0\r\nM9999");
+  CHECK(cli::write_atomic(p, "G4 S0\r\nM9999", "G4 S1\r\nM9999", t.root(), &err));
+  CHECK(t.read("sys/config.g") == "G4 S1\r\nM9999");  // no final newline added
+  struct stat st {};
+  ::stat(p.c_str(), &st);
+  CHECK((st.st_mode & 0777) == 0640);
+  for (const auto& e : fs::directory_iterator(t / "sys")) CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
+}
+
+TEST_CASE("apply_fixes: overlapping fixes are never applied together; a file's line ending is kept", "[cli][matrix][fix]") {
+  SourceManager sm;
+  const SourceFile& f = sm.add("config.g", "/sys/config.g", TextBuffer(std::string("G1 X0 Y0\r\nG1 X1\r\n")));
+  auto diag = [&](uint32_t b, uint32_t e, std::string with) {
+    Diagnostic d;
+    d.loc = Location{f.id(), Span{b, e}};
+    d.fix = Fix{"edit", Applicability::Safe, {Edit{Location{f.id(), Span{b, e}}, std::move(with)}}};
+    return d;
+  };
+  // Two fixes over "X0" (3..5) and "X0 Y0" (3..8): only the first is applied in this round; an insertion of a
+  // new line at the end gets the file's CRLF.
+  const std::vector<Diagnostic> diags = {diag(3, 5, "X5"), diag(3, 8, "Z9"), diag(17, 17, "M400\n")};
+  std::map<FileId, std::string> texts;
+  std::map<FileId, size_t> per_file;
+  const size_t n = cli::apply_fixes(sm, diags, cli::FixOptions{}, [](FileId) { return true; }, texts, &per_file);
+  CHECK(n == 2);
+  CHECK(per_file[f.id()] == 2);
+  CHECK(texts[f.id()] == "G1 X5 Y0\r\nG1 X1\r\nM400\r\n");
+  // A file the run may not write gets no edit at all.
+  texts.clear();
+  CHECK(cli::apply_fixes(sm, diags, cli::FixOptions{}, [](FileId) { return false; }, texts) == 0);
+  CHECK(texts.empty());
+}
+
+TEST_CASE("matrix: --fix writes only the files that were linted, and keeps their owner", "[cli][matrix][fix]") {
+  TempTree t;
+  const std::string fixable = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n";
+  t.write("p/sys/config.g", fixable);
+  t.write("p/sys/homeall.g", "G1 X0 ; rrflint: disable=unknown-command\n");
+  // Only the named file is linted and reported, so only it is fixed.
+  auto o = run_guarded(t.root(), "check p/sys/homeall.g --fix");
+  CHECK(o.code == 0);
+  CHECK(t.read("p/sys/homeall.g") == "G1 X0\n");
+  CHECK(t.read("p/sys/config.g") == fixable);
+  if (kRoot) {
+    REQUIRE(::chown((t / "p/sys/config.g").c_str(), 65534, 65534) == 0);
+    o = run_guarded(t.root(), "check p --fix");
+    CHECK(o.code == 0);
+    CHECK(t.read("p/sys/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
+    struct stat st {};
+    ::stat((t / "p/sys/config.g").c_str(), &st);
+    CHECK(st.st_uid == 65534);
+    CHECK(st.st_gid == 65534);
+  }
+}
