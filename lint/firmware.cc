@@ -111,6 +111,11 @@ int max_line_length(Version v) {
   return 160;
 }
 
+bool cr_is_not_a_line_end(Version v) {
+  if (v.major == 3 && v.minor == 4) return v >= Version(3, 4, 6);
+  return v >= Version(3, 5, 0, 1, 2);
+}
+
 int max_stack_depth(Version v) {
   if (v >= Version(3, 4, 0, 0, 0)) return 10;
   if (v >= Version(3, 1, 0, 0, 0)) return 7;

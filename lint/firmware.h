@@ -56,6 +56,9 @@ int max_stack_depth(Version v);
 char highest_lowercase_axis(Board b, Version v);
 /// Extruders that exist before any M584 E: 0 from 3.3, 1 in 3.0–3.2.
 int default_extruders(Version v);
+/// Does a lone CR fail to end a line in a file? From 3.4.6 on the 3.4 line and from 3.5.0-beta.2, RRF discards CR
+/// when it reads a file, so a file with CR-only line endings is one line.
+bool cr_is_not_a_line_end(Version v);
 
 /// A firmware target as users write it (`--firmware`, `firmware =` in .rrflint.toml): "3.5", "3.4.6", "3.5.0beta2",
 /// "3.5.0-beta.2", "3.01-RC3", "2.02RC2". A version newer than kLatestVersion is taken as kLatestVersion, with a

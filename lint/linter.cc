@@ -141,6 +141,28 @@ void shift_file_ids(MachineResult& r, FileId base) {
   for (Evidence& e : r.target.evidence) shift(e.loc);
 }
 
+namespace {
+
+// 8. A file with CR-only line endings is one line to targets that do not end a line at CR (RRF107): the firmware
+// never sees its lines 2…n as lines, so nothing but RRF107 is reported on them. Earlier targets keep everything.
+void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& sources) {
+  if (!cr_is_not_a_line_end(res.target.version)) return;
+  std::vector<uint32_t> first_line_end(sources.size(), UINT32_MAX);  // by file: UINT32_MAX = not such a file
+  bool any = false;
+  for (FileId f = 0; f < sources.size(); ++f) {
+    const SourceFile& src = sources.get(f);
+    if (!src.endings().cr_only()) continue;
+    first_line_end[f] = src.line_span(0).end;
+    any = true;
+  }
+  if (!any) return;
+  std::erase_if(res.diagnostics, [&](const Diagnostic& d) {
+    return d.code != "RRF107" && d.loc.file < first_line_end.size() && d.loc.span.begin >= first_line_end[d.loc.file];
+  });
+}
+
+}  // namespace
+
 MachineResult lint_machine(SourceManager& sources, FileReader& reader, const LintOptions& options) {
   MachineResult res;
   res.machine = std::make_unique<Machine>(sources, reader);
@@ -337,6 +359,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Lin
   trace::mark("end rules, sort");
   apply_suppressions(res, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
   trace::mark("suppressions");
+  drop_after_first_line_of_cr_files(res, sources);
   return res;
 }
 

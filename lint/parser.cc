@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -141,6 +142,215 @@ RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p
 // A command whose one string argument needs no letter (M117 text); a fraction makes it another command.
 bool unlettered_string(const Command& c) { return c.fraction < 0 && takes_unlettered_string(c.letter, c.number); }
 
+// The syntax of an RRF expression, as ExpressionParser.cpp reads it, without evaluating anything: what RRF rejects
+// whatever the values are (a missing operand, a bracket closed by the wrong one, text where an operator or the end
+// should be). It accepts a little more than RRF (any number of function arguments, a '?' inside the middle operand),
+// never less. Strings that are not closed or hold control characters, and very deep nesting, are left alone
+// (`gave_up`): the lexer reports the first two itself.
+class ExprSyntax {
+ public:
+  ExprSyntax(std::string_view t, uint32_t e) : t_(t), e_(e) {}
+  /// One expression from `p`; `p` is left after it and any blanks. False on an error (`msg`, `at`) or when the
+  /// check gave up (`gave_up`).
+  bool expression(uint32_t& p) { return expr(p, 0); }
+  /// A quoted string at `p` (on the '"'), the way RRF reads a string parameter.
+  bool string(uint32_t& p) { return quoted(p); }
+  uint32_t skip(uint32_t p) const {
+    while (p < e_ && is_blank(t_[p])) ++p;
+    return p;
+  }
+  char at_char(uint32_t p) const { return p < e_ ? t_[p] : '\0'; }
+  bool fail(uint32_t p, const char* m) {
+    msg = m;
+    at = p;
+    return false;
+  }
+  const char* msg = nullptr;  // RRF's own message
+  uint32_t at = 0;
+  bool gave_up = false;
+
+ private:
+  static constexpr int kMaxDepth = 64;
+  bool give_up() {
+    gave_up = true;
+    return false;
+  }
+  static bool is_alnum(char c) { return is_alpha(c) || is_digit(c); }
+  bool expr(uint32_t& p, int depth) {
+    if (!operand(p, depth)) return false;
+    for (;;) {  // binary operators, by the first character: "?^&|!=<>+-*/"
+      p = skip(p);
+      const char c = at_char(p);
+      if (c == '\0' || !std::strchr("?^&|!=<>+-*/", c)) return true;
+      ++p;
+      if (c == '!') {
+        if (at_char(p) != '=') return fail(p, "expected '='");
+        ++p;
+      } else if ((c == '<' || c == '>') && at_char(p) == '=') {
+        ++p;
+      } else if ((c == '=' || c == '&' || c == '|') && at_char(p) == c) {
+        ++p;
+      }
+      if (c == '?') {
+        if (!expr(p, depth + 1)) return false;
+        if (at_char(p) != ':') return fail(p, "expected ':'");
+        ++p;
+        return expr(p, depth + 1);
+      }
+      if (!operand(p, depth + 1)) return false;
+    }
+  }
+  // A bracketed expression's closing bracket (ParseExpectKet); `p` is after the expression.
+  bool ket(uint32_t& p, char closer, int depth) {
+    if (at_char(p) == closer) {
+      ++p;
+    } else if (closer == '}' && at_char(p) == ',') {  // an array literal {a, b, …}, a trailing ',' allowed
+      do {
+        p = skip(p + 1);
+        if (at_char(p) == '}') break;
+        if (!expr(p, depth + 1)) return false;
+      } while (at_char(p) == ',');
+      if (at_char(p) != '}') return fail(p, "expected '}'");
+      ++p;
+    } else {
+      return fail(p, closer == ')' ? "expected ')'" : "expected '}'");
+    }
+    for (;;) {  // index expressions after the bracket
+      const uint32_t q = skip(p);
+      if (at_char(q) != '[') return true;
+      p = q + 1;
+      if (!expr(p, depth + 1)) return false;
+      if (at_char(p) != ']') return fail(p, "expected ']'");
+      ++p;
+    }
+  }
+  bool operand(uint32_t& p, int depth) {
+    if (depth > kMaxDepth) return give_up();
+    p = skip(p);
+    const char c = at_char(p);
+    switch (c) {
+      case '"':
+        return quoted(p);
+      case '\'':  // a character literal 'x'
+        p += 2;
+        if (p > e_ || at_char(p) != '\'') return fail(std::min(p, e_), "expected \"'\"");
+        ++p;
+        return true;
+      case '-':
+      case '+':
+      case '!':
+        ++p;
+        return operand(p, depth + 1);
+      case '#':
+        p = skip(p + 1);
+        return is_alpha(at_char(p)) ? identifier(p, depth + 1) : operand(p, depth + 1);
+      case '{':
+      case '(':
+        ++p;
+        if (!expr(p, depth + 1)) return false;
+        return ket(p, c == '{' ? '}' : ')', depth);
+      default:
+        if (is_digit(c)) return number(p);
+        if (is_alpha(c)) return identifier(p, depth);
+        return fail(p, "expected an expression");
+    }
+  }
+  bool quoted(uint32_t& p) {
+    for (++p;;) {
+      if (p >= e_) return give_up();
+      const char c = t_[p++];
+      if (static_cast<unsigned char>(c) < 0x20) return give_up();
+      if (c == '"') {
+        if (at_char(p) != '"') return true;
+        ++p;
+      } else if (c == '\'' && (is_alpha(at_char(p)) || at_char(p) == '\'')) {
+        ++p;
+      }
+    }
+  }
+  bool number(uint32_t& p) {
+    const char x = static_cast<char>(at_char(p + 1) | 0x20);
+    if (t_[p] == '0' && (x == 'x' || x == 'b')) {  // 0x1F, 0b101
+      p += 2;
+      while (p < e_ && (x == 'x' ? std::isxdigit(static_cast<unsigned char>(t_[p])) != 0 : (t_[p] == '0' || t_[p] == '1')))
+        ++p;
+      return true;
+    }
+    bool point = false;
+    for (; p < e_ && (is_digit(t_[p]) || (t_[p] == '.' && !point)); ++p) point = point || t_[p] == '.';
+    if ((at_char(p) | 0x20) == 'e') {
+      ++p;
+      if (at_char(p) == '+' || at_char(p) == '-') ++p;
+      while (p < e_ && is_digit(t_[p])) ++p;
+    }
+    return true;
+  }
+  // A name with dots and [index] parts (blanks may come before a '.' or '[' but not inside a name), then maybe a
+  // function call's arguments.
+  bool identifier(uint32_t& p, int depth) {
+    const uint32_t begin = p;
+    uint32_t name_end = p;
+    char c = t_[p];
+    bool ident = true;
+    do {
+      ++p;
+      if (c == '[') {
+        if (!expr(p, depth + 1)) return false;
+        if (at_char(p) != ']') return fail(p, "expected ']'");
+        ++p;
+      }
+      name_end = p;
+      bool space = false;
+      for (c = at_char(p); c == ' ' || c == '\t'; c = at_char(++p)) space = ident;
+      ident = is_alnum(c) || c == '_';
+      if (ident && space) break;
+    } while (ident || c == '.' || c == '[');
+    p = skip(p);
+    if (at_char(p) != '(') return true;
+    ++p;
+    if (t_.substr(begin, name_end - begin) == "exists") {  // exists(name): a name straight after the '('
+      if (!is_alpha(at_char(p))) return fail(p, "expected an identifier");
+      if (!identifier(p, depth + 1)) return false;
+    } else {
+      if (!expr(p, depth + 1)) return false;
+      while (at_char(p) == ',') {
+        ++p;
+        if (!expr(p, depth + 1)) return false;
+      }
+    }
+    p = skip(p);
+    if (at_char(p) != ')') return fail(p, "expected ')'");
+    ++p;
+    return true;
+  }
+
+  std::string_view t_;
+  uint32_t e_;
+};
+
+// `s`, cut to 40 characters for a message.
+std::string clip(std::string_view s) {
+  return s.size() <= 40 ? std::string(s) : fmt::format("{}…", s.substr(0, 40));
+}
+
+// "'…'" or "the end": where an expression error is, for a message.
+std::string error_place(std::string_view t, uint32_t at, uint32_t e) {
+  if (at >= e) return "at the end";
+  std::string_view rest = t.substr(at, e - at);
+  if (rest.size() > 16) return fmt::format("at '{}…'", rest.substr(0, 16));
+  return fmt::format("at '{}'", rest);
+}
+
+// Is the {…} group [b, e) (from its '{' to after its '}') a complete expression? `msg` and `at` say why not.
+bool brace_expression_ok(std::string_view t, uint32_t b, uint32_t e, const char** msg, uint32_t* at) {
+  ExprSyntax x(t, e);
+  uint32_t p = b;
+  if (x.expression(p) || x.gave_up) return true;
+  *msg = x.msg;
+  *at = x.at;
+  return false;
+}
+
 }  // namespace
 
 // The lexer of values and parameters. The parse pass runs it with `out` set (errors are recorded); ParamRange
@@ -194,8 +404,9 @@ struct Lexer {
       if (t[e] == closer) return true;
     return false;
   }
-  // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole.
-  [[gnu::noinline]] uint32_t skip_braces(uint32_t p, uint32_t e) const {
+  // Skips a {…} expression starting at `p` (on '{'). Strings inside are skipped whole. With `check`, an
+  // expression RRF cannot parse (`{1 + }`, `{(1 + 2}`) is an error; text RRF skips unread is not checked.
+  [[gnu::noinline]] uint32_t skip_braces(uint32_t p, uint32_t e, bool check = true) const {
     const uint32_t start = p;
     int depth = 0;
     while (p < e) {
@@ -205,7 +416,14 @@ struct Lexer {
         continue;
       }
       if (c == '{') ++depth;
-      else if (c == '}' && --depth == 0) return p + 1;
+      else if (c == '}' && --depth == 0) {
+        const char* msg = nullptr;
+        uint32_t at = 0;
+        if (out && check && !brace_expression_ok(t, start, p + 1, &msg, &at))
+          error(std::min(at, p), p + 1,
+                fmt::format("{} in '{}', {}", msg, clip(t.substr(start, p + 1 - start)), error_place(t, at, p + 1)));
+        return p + 1;
+      }
       ++p;
     }
     // A ';' that cut the line is RRF113's finding (semicolon-in-expression), not a syntax error.
@@ -316,6 +534,7 @@ bool Lexer::first_param(const Command& c, uint32_t& p, uint32_t e, Param& param)
   param.span = param.value = Span{q, e};
   param.kind = t[q] == '"' ? ValueKind::String : t[q] == '{' ? ValueKind::Expression : ValueKind::Text;
   if (param.kind == ValueKind::String) param.span = param.value = Span{q, skip_string(q, e)};
+  else if (param.kind == ValueKind::Expression && out) (void)skip_braces(q, e);  // for its errors: RRF reads it
   return true;
 }
 
@@ -344,7 +563,7 @@ bool Lexer::next_param(const Command& cmd, uint32_t& p, uint32_t e, Param& param
     uint32_t q = p;
     while (q < e && !is_alpha(t[q])) {
       if (t[q] == '"') q = skip_string(q, e);
-      else if (t[q] == '{') q = skip_braces(q, e);
+      else if (t[q] == '{') q = skip_braces(q, e, false);  // RRF skips this text unread
       else ++q;
     }
     param.value = Span{p, q};
@@ -489,8 +708,8 @@ class LineParser {
  public:
   /// Lines go to `out.lines`, or, when `in_place` is given, into `in_place[first_line…]` (a part of a file parsed
   /// in parts: `out` then takes the part's commands, meta-commands and errors, with commands indexed from 0).
-  LineParser(ParsedFile& out, bool cnc, detail::LineRec* in_place = nullptr, uint32_t first_line = 0)
-      : out_(out), lex_{out.source->text(), cnc, &out}, in_place_(in_place), next_line_(first_line) {}
+  LineParser(ParsedFile& out, bool cnc, bool laser, detail::LineRec* in_place = nullptr, uint32_t first_line = 0)
+      : out_(out), lex_{out.source->text(), cnc, &out}, in_place_(in_place), next_line_(first_line), laser_(laser) {}
   /// Parses the editor lines [from, to) of the file.
   void parse_lines(uint32_t from, uint32_t to, bool any_nul, bool any_del);
   /// Parses a file without NUL bytes in `parts` parts, one per thread.
@@ -502,11 +721,11 @@ class LineParser {
  private:
   void error(uint32_t b, uint32_t e, std::string msg) { lex_.error(b, e, std::move(msg)); }
   bool simple_line(uint32_t b, uint32_t e);
-  // Tracks the machine mode for ( ) comments: M453 = CNC, M451/M452 = not; it applies from the next line.
+  // Tracks the machine mode: M453 = CNC (`( )` comments), M452 = laser, M451 = FFF; it applies from the next line.
   void note_mode(char letter, int32_t number, int8_t fraction) {
-    if (letter != 'M' || fraction >= 0) return;
-    if (number == 453) next_cnc_ = true;
-    else if (number == 451 || number == 452) next_cnc_ = false;
+    if (letter != 'M' || fraction >= 0 || number < 451 || number > 453) return;
+    next_cnc_ = number == 453;
+    next_laser_ = number == 452;
   }
   detail::LineRec& next_line_rec() {
     if (in_place_) return in_place_[next_line_++];
@@ -520,7 +739,10 @@ class LineParser {
   void lex_params(Command& cmd, uint32_t& p, uint32_t e);
   // `what` names the expression in a message: "the '<kw>' <role>", or "the <role>" without a keyword (built only
   // for an error: most expressions are fine).
-  void check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role);
+  /// False when it reported an error or a ';' cut the expression.
+  bool check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role);
+  /// The meta command's expressions as RRF's expression parser reads them (after check_expression passed).
+  void check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e);
   void add_line(const Line& line, bool cut_by_del) {
     if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end)) {
       rich_->insert(next_line_);
@@ -549,13 +771,16 @@ class LineParser {
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
+  bool laser_ = false;      // laser mode (M452): a line of axis words repeats the last move, as in CNC mode
+  bool next_laser_ = false;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
 };
 
-void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role) {
+bool LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, std::string_view role) {
   // Parsed just far enough to know it is an expression: balanced brackets and closed strings.
   const std::string_view t = lex_.t;
   auto what = [&] { return kw.empty() ? fmt::format("the {}", role) : fmt::format("the '{}' {}", kw, role); };
+  const size_t errors = out_.errors.size();
   std::string stack;
   for (uint32_t p = b; p < e; ++p) {
     const char c = t[p];
@@ -573,7 +798,7 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, s
       const char want = c == ')' ? '(' : c == ']' ? '[' : '{';
       if (stack.empty() || stack.back() != want) {
         error(p, p + 1, fmt::format("unbalanced '{}' in {}", c, what()));
-        return;
+        return false;
       }
       stack.pop_back();
     }
@@ -582,7 +807,52 @@ void LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, s
     const char closer = stack.back() == '(' ? ')' : stack.back() == '[' ? ']' : '}';
     if (lex_.cut_by_semicolon(e, closer)) out_.semicolon_cuts.push_back(Span{b, e});
     else error(b, e, fmt::format("unclosed '{}' in {}", stack.back(), what()));
+    return false;
   }
+  return out_.errors.size() == errors;
+}
+
+void LineParser::check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e) {
+  const std::string_view t = lex_.t;
+  // In CNC mode RRF drops `( … )` outside braces before it reads the line: leave such a line alone.
+  if (lex_.cnc && span_has(t, Span{b, e}, '(')) return;
+  ExprSyntax x(t, e);
+  const std::string_view kw = meta_keyword(kind);
+  std::string_view what;
+  uint32_t p = b;
+  bool ok = true;
+  std::string_view note;
+  switch (kind) {
+    case MetaKind::If:
+    case MetaKind::Elif:
+    case MetaKind::While:
+      what = "condition";
+      ok = x.expression(p) && (p >= e || x.fail(p, "Unexpected characters after expression"));
+      break;
+    case MetaKind::Echo:
+      what = "arguments";
+      if (x.at_char(p) == '>') {  // echo >"file", >>"file", >>>"file": a string straight after the '>'s
+        for (int k = 0; k < 3 && x.at_char(p) == '>'; ++k) ++p;
+        const char c = x.at_char(p);
+        ok = c == '"' ? x.string(p) : c == '{' ? x.expression(p) : x.fail(p, "expected a string expression");
+        if (is_blank(c)) note = " (standalone RRF wants the file name straight after '>'; DSF in SBC mode skips the blank)";
+      }
+      while (ok) {  // expressions separated by commas; a trailing comma is allowed
+        p = x.skip(p);
+        if (p >= e) break;
+        ok = x.expression(p);
+        if (ok && p < e) ok = x.at_char(p) == ',' ? (++p, true) : x.fail(p, "expected ','");
+      }
+      break;
+    default:  // var, global, set: RRF reads one expression and ignores what follows it
+      what = "value";
+      ok = x.expression(p);
+      break;
+  }
+  if (ok || x.gave_up) return;
+  const std::string where = kw == "set" || kw == "var" || kw == "global" ? fmt::format("the {} of '{}'", what, kw)
+                                                                          : fmt::format("the '{}' {}", kw, what);
+  error(std::min(x.at, e > b ? e - 1 : b), e, fmt::format("{} in {}, {}{}", x.msg, where, error_place(t, x.at, e), note));
 }
 
 void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool may_have_del) {
@@ -603,13 +873,14 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool
     }
     ++p;
   }
-  // 0x7F discards the rest of the line.
+  // 0x7F (a serial-line error marker to RRF) discards the whole line: what came before it too.
   bool cut_by_del = false;
   if (may_have_del && p < e) {
     if (const void* del = std::memchr(t.data() + p, 0x7f, e - p)) {
       const auto k = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
-      error(k, e, "byte 0x7F: RRF discards the rest of the line from here");
-      e = k;
+      error(k, e, k > p ? "byte 0x7F: RRF discards the whole line, the text before this byte too"
+                        : "byte 0x7F: RRF discards the whole line");
+      e = p;
       cut_by_del = true;
     }
   }
@@ -845,7 +1116,7 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
     case MetaKind::Elif:
     case MetaKind::While:
       if (p >= e) error(line.code.begin, e, fmt::format("expected a condition after '{}'", kw));
-      else check_expression(p, e, kw, "condition");
+      else if (check_expression(p, e, kw, "condition")) check_meta_syntax(kind, p, e);
       break;
     case MetaKind::Else:
       if (p < e) error(p, e, "unexpected characters after 'else' (use 'elif' for a condition)");
@@ -900,11 +1171,13 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
         return;
       }
       line.meta_arg = Span{q, e};
-      check_expression(q, e, "", "expression");
+      if (check_expression(q, e, "", "expression")) check_meta_syntax(kind, q, e);
       break;
     }
     case MetaKind::Echo:
-    case MetaKind::Abort:
+      if (p < e && check_expression(p, e, kw, "arguments")) check_meta_syntax(kind, p, e);
+      break;
+    case MetaKind::Abort:  // RRF aborts even when it cannot read the message: only brackets and strings matter
       if (p < e) check_expression(p, e, kw, "arguments");
       break;
     default:
@@ -928,6 +1201,23 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
     const uint32_t cb = p;
     const char L = upper(t[p]);
     if (L != 'G' && L != 'M' && L != 'T') {
+      // A line of axis words (`X5 F300`, `'a2`): in CNC and laser mode RRF repeats the last G0-G3 with them.
+      const bool apostrophe = t[p] == '\'' && p + 1 < e && is_alpha(t[p + 1]);
+      const char axis = apostrophe ? lower(t[p + 1]) : L;
+      const uint32_t after = p + (apostrophe ? 2 : 1);
+      const bool axis_words = first && (apostrophe || std::strchr("XYZUVWABCD", axis) != nullptr) && axis != '\0' &&
+                              !(after < e && is_alpha(t[after]));
+      if (axis_words && (lex_.cnc || laser_)) {  // its parameters run to the next G or M, as a command's do
+        Command repeat;
+        repeat.letter = 'G';
+        repeat.number = 1;
+        repeat.cnc = lex_.cnc;
+        Param param;
+        while (lex_.next_param(repeat, p, e, param)) {
+        }
+        first = false;
+        continue;
+      }
       if (first) {
         std::string_view text = t.substr(b, e - b);
         if (text.size() > 40) text = text.substr(0, 40);
@@ -941,7 +1231,11 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
           }
         }
         error(b, e, kw_case ? fmt::format("Bad command: '{}': meta-command keywords must be lowercase", text)
-                            : fmt::format("Bad command: '{}': a line must start with G, M or T", text));
+                            : fmt::format("Bad command: '{}': a line must start with G, M or T{}", text,
+                                          axis_words ? " (axis words alone repeat the last move only in CNC or "
+                                                       "laser mode, after M453 or M452)"
+                                                     : ""));
+        out_.errors.back().axis_repeat = axis_words;
         line.kind = LineKind::Bad;
       }
       break;
@@ -1042,6 +1336,7 @@ bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
           if (!(p = skip_string(p))) return false;
           continue;
         case ByteClasses::kBrace: {
+          const uint32_t open = p;
           int depth = 0;
           while (p < e && !(s[p] == '}' && --depth == 0)) {
             if (s[p] == '"') {
@@ -1053,6 +1348,9 @@ bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
           }
           if (p >= e) return false;
           ++p;
+          const char* msg = nullptr;
+          uint32_t at = 0;
+          if (!brace_expression_ok(lex_.t, open, p, &msg, &at)) return false;  // the lexer reports it
           continue;
         }
         case ByteClasses::kColon:
@@ -1217,13 +1515,17 @@ void LineParser::parse_lines(uint32_t from, uint32_t to, bool any_nul, bool any_
   for (uint32_t i = from; i < to; ++i) {
     const Span ls = file.line_span(i);
     uint32_t b = ls.begin;
+    // A UTF-8 byte-order mark: RRF118 byte-order-mark reports it; the line is read as the author wrote it.
+    if (b == 0 && t.starts_with("\xEF\xBB\xBF")) b = std::min<uint32_t>(3, ls.end);
     bool after_nul = false;
     for (;;) {
       const void* nul = any_nul ? std::memchr(t.data() + b, '\0', ls.end - b) : nullptr;
       const uint32_t e = nul ? static_cast<uint32_t>(static_cast<const char*>(nul) - t.data()) : ls.end;
       next_cnc_ = lex_.cnc;
+      next_laser_ = laser_;
       parse_logical_line(b, e, after_nul, any_del);
       lex_.cnc = next_cnc_;
+      laser_ = next_laser_;
       if (any_nul) out_.lines.spans_.push_back(Span{b, e});
       if (!nul) break;
       out_.errors.push_back({Span{e, e + 1}, "NUL byte: RRF ends the line here and reads the rest as a new line"});
@@ -1265,10 +1567,11 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
   pf.lines.recs_.resize(file.line_count());  // not initialised (DefaultInit): each part writes its lines
   struct Part {
     ParsedFile out;
-    bool cnc_in = false, cnc_out = false;
+    bool cnc_in = false, cnc_out = false, laser_in = false, laser_out = false;
   };
   std::vector<Part> ps(parts);
   ps[0].cnc_in = opts.cnc_mode;
+  ps[0].laser_in = opts.laser_mode;
   auto run = [&](size_t j) {
     Part& p = ps[j];
     ParsedFile& out = j == 0 ? pf : p.out;  // the first part goes straight into the result
@@ -1278,7 +1581,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
       out.lines.source_ = &file;
     }
     reserve_huge(out.commands.recs_, first[j + 1] - first[j] + 1);
-    LineParser lp(out, p.cnc_in, pf.lines.recs_.data(), first[j]);
+    LineParser lp(out, p.cnc_in, p.laser_in, pf.lines.recs_.data(), first[j]);
     lp.fast_lines = opts.fast_lines;
     lp.rich_ = &pf.rich_lines;
     lp.parens_ = &pf.paren_lines;
@@ -1286,11 +1589,13 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     lp.colon_comments_ = &pf.colon_comment_lines;
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
+    p.laser_out = lp.laser_;
   };
   run_tasks(parts, std::min(parts, opts.threads), run);
   for (unsigned j = 1; j < parts; ++j) {
-    if (ps[j].cnc_in != ps[j - 1].cnc_out) {
+    if (ps[j].cnc_in != ps[j - 1].cnc_out || ps[j].laser_in != ps[j - 1].laser_out) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
+      ps[j].laser_in = ps[j - 1].laser_out;
       pf.rich_lines.clear(first[j], first[j + 1]);
       for (LineSet* set : {&pf.paren_lines, &pf.apostrophe_lines, &pf.colon_comment_lines}) set->clear(first[j], first[j + 1]);
       run(j);
@@ -1381,7 +1686,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     // cost no memory, and no vector is copied while it grows on large files.
     reserve_huge(pf.lines.recs_, file.line_count() + 1);
     reserve_huge(pf.commands.recs_, file.line_count() + 1);
-    LineParser lp(pf, opts.cnc_mode);
+    LineParser lp(pf, opts.cnc_mode, opts.laser_mode);
     lp.fast_lines = opts.fast_lines;
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }

@@ -126,10 +126,14 @@ struct Line {
 struct ParseError {
   Span span;
   std::string message;
+  /// A line of bare axis words (`X5 F300`) read outside CNC and laser mode. In those modes (M453, M452) RRF repeats
+  /// the last G0-G3 with them; a file that never sets the mode may run in one, which the syntax-error rule checks.
+  bool axis_repeat = false;
 };
 
 struct ParseOptions {
   bool cnc_mode = false;  // `( )` comments are recognised only in CNC mode (M453)
+  bool laser_mode = false;  // M452: like CNC mode, a line of axis words repeats the last move (no `( )` comments)
   /// A large file is cut at line starts into parts of at least `part_bytes`, parsed on up to `threads` threads
   /// and joined. The result is the same as a parse on one thread (a part that a mode switch before it changes is
   /// parsed again).

@@ -15,9 +15,11 @@ namespace rrflint {
 namespace {
 
 // What a scan of the text met besides LFs.
-enum : unsigned { kSawCr = 1, kSawNul = 2, kSawDel = 4 };
+enum : unsigned { kSawCr = 1, kSawNul = 2, kSawDel = 4, kSawHigh = 8 };
 
-unsigned saw(char c) { return c == '\r' ? kSawCr : c == '\0' ? kSawNul : c == 0x7f ? kSawDel : 0u; }
+unsigned saw(char c) {
+  return c == '\r' ? kSawCr : c == '\0' ? kSawNul : c == 0x7f ? kSawDel : static_cast<unsigned char>(c) >= 0x80 ? kSawHigh : 0u;
+}
 
 // Appends the start of every line after an LF in [b, e) to `out`; returns the kSaw* bits of the other bytes met
 // (one pass over the text for the line index and the parser's NUL and DEL tests).
@@ -32,6 +34,7 @@ unsigned index_lf(const char* base, size_t b, size_t e, std::vector<uint32_t>& o
     const __m128i other = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, cr), _mm_cmpeq_epi8(v, nul)), _mm_cmpeq_epi8(v, del));
     if (_mm_movemask_epi8(other))
       for (size_t k = 0; k < 16; ++k) seen |= saw(base[i + k]);
+    if (_mm_movemask_epi8(v)) seen |= kSawHigh;  // a byte of 0x80 or more
     for (auto mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, nl))); mask; mask &= mask - 1)
       out.push_back(static_cast<uint32_t>(i + static_cast<unsigned>(__builtin_ctz(mask)) + 1));
   }
@@ -73,6 +76,7 @@ SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, Text
   for (unsigned s : seen) all |= s;
   any_nul_ = (all & kSawNul) != 0;
   any_del_ = (all & kSawDel) != 0;
+  any_high_ = (all & kSawHigh) != 0;
   if (!(all & kSawCr)) {
     for (const std::vector<uint32_t>& v : later) line_starts_.insert(line_starts_.end(), v.begin(), v.end());
     endings_.lf = static_cast<uint32_t>(line_starts_.size() - 1);

@@ -109,6 +109,8 @@ class SourceFile {
   /// needs no pass of its own over the text.
   bool any_nul() const { return any_nul_; }
   bool any_del() const { return any_del_; }
+  /// Whether the buffer holds a byte of 0x80 or more (anything but ASCII), found by the same scan.
+  bool any_high() const { return any_high_; }
   /// The terminator after line `line0` ("\n", "\r\n", "\r" or "" at end of file).
   std::string_view terminator(uint32_t line0) const;
 
@@ -120,7 +122,7 @@ class SourceFile {
   uint32_t line_end(uint32_t line0) const;  // from the next line's start: the index keeps starts only
   std::vector<uint32_t> line_starts_;
   LineEndings endings_;
-  bool any_nul_ = false, any_del_ = false;
+  bool any_nul_ = false, any_del_ = false, any_high_ = false;
 };
 
 inline uint32_t SourceFile::line_end(uint32_t line0) const {

@@ -23,7 +23,8 @@ line**. If it starts with a `;` comment (as every config-tool file does) the who
 config.g silently does nothing; otherwise only the first command runs, or the line overflows with
 `GCode command too long`. Before 3.4.6 a CR still ended a line, and the rule stays silent.
 
-rrflint still analyses the file line by line, as its author meant it, so other findings stay useful.
+Since the firmware never sees lines 2 to the end as lines, rrflint reports nothing else on them: this finding is
+the file's one finding there (fix it, and the other findings show up). On earlier targets nothing is hidden.
 
 ## Example
 A file saved with CR line endings by an old editor.
@@ -39,14 +40,9 @@ The fix replaces every lone CR with LF. It is safe: it changes only line endings
 )md",
 };
 
-bool cr_is_one_line(Version v) {
-  if (v.major == 3 && v.minor == 4) return v >= Version(3, 4, 6);
-  return v >= Version(3, 5, 0, 1, 2);
-}
-
 void check(const FileContext& cx, Sink& out) {
   const SourceFile& src = cx.source();
-  if (!src.endings().cr_only() || !cr_is_one_line(cx.target.version)) return;
+  if (!src.endings().cr_only() || !cr_is_not_a_line_end(cx.target.version)) return;
   Fix fix;
   fix.title = "replace CR line endings with LF";
   fix.applicability = Applicability::Safe;

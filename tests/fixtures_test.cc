@@ -541,7 +541,7 @@ TEST_CASE("a file rule that reads the machine is marked whole_card", "[fixtures]
     CHECK(reads == r->whole_card);
   }
   CHECK(file_rules > 20);
-  CHECK(marked == 2);
+  CHECK(marked == 3);
 }
 
 TEST_CASE("every rule has fixtures with two positive and two negative cases", "[fixtures]") {

@@ -147,13 +147,54 @@ TEST_CASE("parser: NUL ends a line and the rest is a new line", "[parser]") {
   CHECK(p.pf.errors[0].message.starts_with("NUL byte"));
 }
 
-TEST_CASE("parser: 0x7F discards the rest of the line", "[parser]") {
-  Parsed p = parse_text("G1 X1\x7fY2\nM83\n");
-  CHECK(render_line(p.pf, p.pf.lines[0]) == "cmd: G1 X=1");
+TEST_CASE("parser: 0x7F discards the whole line", "[parser]") {
+  // StringParser::Put() empties the line buffer at 0x7F and discards the rest: the command before it is lost too.
+  Parsed p = parse_text("G1 X1\x7fY2\nM83\n  M84\x7f\n");
+  CHECK(render_line(p.pf, p.pf.lines[0]) == "blank");
   CHECK(render_line(p.pf, p.pf.lines[1]) == "cmd: M83");
-  REQUIRE(p.pf.errors.size() == 1);
+  CHECK(render_line(p.pf, p.pf.lines[2]) == "blank@2");
+  CHECK(p.pf.commands.size() == 1);
+  REQUIRE(p.pf.errors.size() == 2);
   CHECK(p.pf.errors[0].span == Span{5, 8});
   CHECK(p.pf.errors[0].message.starts_with("byte 0x7F"));
+  CHECK(p.pf.errors[1].span == Span{18, 19});
+}
+
+TEST_CASE("parser: a UTF-8 byte-order mark at the start is not part of the first line's code", "[parser]") {
+  Parsed p = parse_text("\xEF\xBB\xBFM83\nG21\n");
+  CHECK(render_line(p.pf, p.pf.lines[0]) == "cmd: M83");
+  CHECK(p.pf.errors.empty());
+  Parsed q = parse_text("\xEF\xBB\xBF; comment\nG21\n");
+  CHECK(render_line(q.pf, q.pf.lines[0]) == "comment");
+}
+
+TEST_CASE("parser: expressions RRF's expression parser rejects", "[parser]") {
+  auto first_error = [](std::string text) {
+    Parsed p = parse_text(std::move(text));
+    return p.pf.errors.empty() ? std::string() : p.pf.errors[0].message;
+  };
+  CHECK(first_error("G1 X{(1 + 2} F6000\n").starts_with("expected ')'"));
+  CHECK(first_error("G1 X{1 + } F6000\n").starts_with("expected an expression"));
+  CHECK(first_error("G1 X{1 2}\n").starts_with("expected '}'"));
+  CHECK(first_error("if true false\n  M400\n").starts_with("Unexpected characters after expression"));
+  CHECK(first_error("echo 1 2\n").starts_with("expected ','"));
+  CHECK(first_error("var a = 1 +\n").starts_with("expected an expression"));
+  // Valid: RRF reads one expression after '=' and ignores the rest; arrays, functions, literals, ternaries.
+  CHECK(first_error("var a = 1 2\n") == "");
+  CHECK(first_error("G1 X{max(1, 2) + #move.axes - 0x1F * 1.5e3} Y{{1, 2,}[0]} Z{a ? 'b' : \"c\"\"d\"}\n") == "");
+  CHECK(first_error("if exists(global.x) && !(a.b[1].c != 2) || d >= e\n  M400\n") == "");
+  CHECK(first_error("echo >>\"/sys/x.txt\" 1, \"two\",\n") == "");
+  // Deep nesting is left alone rather than recursed into without bound.
+  CHECK(first_error("G1 X{" + std::string(5000, '(') + "1" + std::string(5000, ')') + "}\n") == "");
+}
+
+TEST_CASE("parser: axis words alone repeat the last move in CNC and laser mode only", "[parser]") {
+  Parsed p = parse_text("X5 F300\nM453\nX5 F300 M5\nM452\n'a5\nM451\nY1\n");
+  REQUIRE(p.pf.errors.size() == 2);
+  CHECK(p.pf.errors[0].axis_repeat);
+  CHECK(p.pf.errors[1].axis_repeat);
+  CHECK(render_line(p.pf, p.pf.lines[2]) == "cmd: M5");
+  CHECK(render_line(p.pf, p.pf.lines[4]) == "cmd:");
 }
 
 // §1.2 Indentation.
@@ -255,7 +296,7 @@ TEST_CASE("parser: command words", "[parser]") {
 }
 
 TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[parser]") {
-  CHECK(errors("X10 Y20") == std::vector<std::string>{"0: Bad command: 'X10 Y20': a line must start with G, M or T"});
+  CHECK(errors("X10 Y20") == std::vector<std::string>{"0: Bad command: 'X10 Y20': a line must start with G, M or T (axis words alone repeat the last move only in CNC or laser mode, after M453 or M452)"});
   CHECK(errors("IF true") ==
         std::vector<std::string>{"0: Bad command: 'IF true': meta-command keywords must be lowercase"});
   CHECK(errors("Echo \"x\"").size() == 1);

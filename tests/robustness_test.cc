@@ -28,11 +28,19 @@ Output run_guarded(const fs::path& cwd, const std::string& args, const std::stri
   return run_rrflint(cwd, args, "timeout 60", stdin_text);
 }
 
-// Runs rrflint as the user nobody (as root) or as this user, in a tree nobody may enter.
+Output run_shell(const fs::path& cwd, const std::string& cmd);
+
+// Runs rrflint as the user nobody (as root) or as this user. The tree and a copy of the binary are made readable to
+// nobody: the build folder may not be (a clone under /root).
 Output run_unprivileged(TempTree& t, const std::string& args) {
   ::chmod(t.root().c_str(), 0755);
+  std::error_code ec;
+  fs::create_directories(t / ".bin", ec);
+  fs::copy_file(RRFLINT_BINARY, t / ".bin/rrflint", fs::copy_options::overwrite_existing, ec);
+  ::chmod((t / ".bin").c_str(), 0755);
+  ::chmod((t / ".bin/rrflint").c_str(), 0755);
   const std::string as = kRoot ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
-  return run_rrflint(t.root(), args, "timeout 60 " + as);
+  return run_shell(t.root(), "timeout 60 " + as + shell_quote((t / ".bin/rrflint").string()) + " " + args);
 }
 
 // Runs a shell command in `cwd`, capturing its output.
