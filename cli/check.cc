@@ -77,8 +77,8 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
 }
 
 // What a job could not lint. A config.g that cannot be linted makes the card an error (exit 2), and so does a file
-// named on the command line that was not linted; other files that cannot be linted are findings (RRF506). Also
-// counts the files linted, so that a run over nothing never passes.
+// named on the command line that was not linted; other files that cannot be linted are findings (RRF506). The
+// caller counts the files linted (Totals::linted), so that a run over nothing never passes.
 void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Totals& t) {
   const std::string config = to_lower(eff.lint.sys_dir + "/config.g");
   std::set<std::string> linted;
