@@ -16,8 +16,9 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
-#include "lint/disk.h"
-#include "lint/linter.h"
+#include "frontend/disk.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 
 namespace fs = std::filesystem;
 using namespace rrflint;
@@ -61,7 +62,7 @@ void lint_file(benchmark::State& state, const std::string& size) {
     SourceManager sources;
     MemoryReader reader;
     reader.add("/sys/config.g", text);
-    MachineResult r = lint_machine(sources, reader, LintOptions{});
+    MachineResult r = lint_machine(sources, reader, builtin_rules(), LintOptions{});
     findings = r.diagnostics.size();
     benchmark::DoNotOptimize(r.diagnostics.data());
   }
@@ -111,7 +112,7 @@ void BM_LintCorpusFolder(benchmark::State& state) {
   for (auto _ : state) {
     SourceManager sources;
     DiskReader reader(card->root, card->sys_dir, card->root);
-    MachineResult r = lint_machine(sources, reader, LintOptions{});
+    MachineResult r = lint_machine(sources, reader, builtin_rules(), LintOptions{});
     files = r.machine->unit_count();
     benchmark::DoNotOptimize(r.diagnostics.data());
   }
@@ -213,7 +214,7 @@ void BM_Relint300(benchmark::State& state) {
     reader.add("/sys/speeds.g", speeds);
     reader.add("/macros/leds.g", leds);
     reader.add("/sys/tpost0.g", tpost);
-    MachineResult r = lint_machine(sources, reader, LintOptions{});
+    MachineResult r = lint_machine(sources, reader, builtin_rules(), LintOptions{});
     findings = r.diagnostics.size();
     benchmark::DoNotOptimize(r.diagnostics.data());
   }

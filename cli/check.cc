@@ -12,11 +12,11 @@
 #include <thread>
 #include <unordered_map>
 
-#include "cli.h"
-#include "lint/parallel.h"
+#include "cli/cli.h"
+#include "lint/base/parallel.h"
 #include "lint/render/render.h"
-#include "lint/trace.h"
-#include "lint/suppress.h"
+#include "lint/base/trace.h"
+#include "lint/engine/suppress.h"
 
 namespace rrflint::cli {
 namespace {
@@ -68,7 +68,7 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
     Prelinted& p = *out[todo[k]];
     try {
       JobReader reader(jobs[todo[k]]);
-      p.result = lint_machine(p.sources, reader, p.eff.lint);
+      p.result = lint_machine(p.sources, reader, builtin_rules(), p.eff.lint);
     } catch (...) {
       p.error = std::current_exception();  // reported by run_job, in order
     }
@@ -144,7 +144,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
     r = std::move(pre->result);
     shift_file_ids(r, sm.adopt(pre->sources));
   } else {
-    r = lint_machine(sm, reader, eff.lint);
+    r = lint_machine(sm, reader, builtin_rules(), eff.lint);
   }
   if (job.report_all && co.plan.respect_gitignore && !job.named_despite_exclusion) {
     // One `git check-ignore` for the whole card rather than one per file.
@@ -182,7 +182,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
         current[f.sd_path()] = text;
         reader.set(f.sd_path(), text);
       }
-      r = lint_machine(sm, reader, eff.lint);
+      r = lint_machine(sm, reader, builtin_rules(), eff.lint);
     }
     // Nothing is written outside the linted folder (a card's root, a lone file's folder).
     const std::optional<fs::path> root =
@@ -212,7 +212,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
         unwritten = true;
       }
     }
-    if (unwritten) r = lint_machine(sm, reader, eff.lint);
+    if (unwritten) r = lint_machine(sm, reader, builtin_rules(), eff.lint);
     if (job.stdin_bytes && co.fix && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
   }
 
@@ -230,7 +230,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
       const FileUnit& u = r.machine->unit(i);
       auto it = by_file.find(u.source->id());
       if (it == by_file.end()) continue;
-      std::vector<Edit> edits = suppression_edits(u.parsed, it->second, *co.add_suppressions);
+      std::vector<Edit> edits = suppression_edits(u.parsed, builtin_rules(), it->second, *co.add_suppressions);
       std::string text(u.source->text());
       const std::string before = text;
       apply_edits(text, edits);
@@ -384,6 +384,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   });
   std::error_code ec;
   RenderOptions ro;
+  ro.rules = &builtin_rules();
   ro.files_checked = t.files;
   ro.fixed = t.fixed;
   ro.unsafe_fixes_enabled = co.unsafe_fixes;

@@ -17,9 +17,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "lint/config.h"
-#include "lint/disk.h"
-#include "lint/linter.h"
+#include "frontend/config.h"
+#include "frontend/disk.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 
 namespace rrflint::cli {
 

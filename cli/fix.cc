@@ -10,7 +10,7 @@
 #include <cstring>
 #include <tuple>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 namespace rrflint::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include <sys/wait.h>
 #include <unordered_map>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 namespace rrflint::cli {
 namespace {

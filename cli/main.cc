@@ -10,10 +10,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "cli.h"
-#include "lint/disk.h"
+#include "cli/cli.h"
+#include "frontend/disk.h"
 #include "lint/render/model_render.h"
-#include "lint/trace.h"
+#include "lint/base/trace.h"
 
 using namespace rrflint;
 using namespace rrflint::cli;
@@ -221,7 +221,7 @@ int main(int argc, char** argv) {
     eff.lint.threads = default_threads();
     SourceManager sm;
     JobReader reader(job);
-    MachineResult r = lint_machine(sm, reader, eff.lint);
+    MachineResult r = lint_machine(sm, reader, builtin_rules(), eff.lint);
     bool config_unreadable = false;
     for (const LoadProblem& p : r.machine->problems()) {
       const bool is_config = to_lower(p.sd_path) == to_lower(eff.lint.sys_dir + "/config.g");

@@ -6,10 +6,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "lint/render/render.h"
 #include "lint/render/rule_docs.h"
-#include "lint/rule.h"
+#include "lint/engine/rule.h"
+#include "rules/registry.h"
 
 namespace rrflint::cli {
 namespace {
@@ -38,7 +39,7 @@ int generate(const RuleOptions& ro) {
   std::error_code ec;
   const fs::path dir(ro.generate_dir);
   if (!ro.check) fs::create_directories(dir, ec);
-  const auto docs = generated_rule_docs();
+  const auto docs = generated_rule_docs(builtin_rules());
   bool stale = false;
   for (const auto& [name, text] : docs) stale = sync(dir / name, text, ro.check) || stale;
   // Pages of rules that no longer exist (only generated ones: they carry the banner).
@@ -59,7 +60,7 @@ int generate(const RuleOptions& ro) {
       error(fmt::format("{}: {}", ro.readme, err));
       return kExitError;
     }
-    auto updated = replace_rule_list(*text, readme_rule_list());
+    auto updated = replace_rule_list(*text, readme_rule_list(builtin_rules()));
     if (!updated) {
       error(fmt::format("{}: no '{}' … '{}' markers", ro.readme, kRulesBegin, kRulesEnd));
       return kExitError;
@@ -78,8 +79,8 @@ int run_rule(const RuleOptions& ro) {
   if (!ro.generate_dir.empty()) return generate(ro);
   std::vector<const Rule*> list;
   if (ro.all) {
-    list = all_rules();
-  } else if (const Rule* r = find_rule(ro.name)) {
+    list = builtin_rules().all();
+  } else if (const Rule* r = builtin_rules().find(ro.name)) {
     list.push_back(r);
   } else {
     if (ro.name.empty()) error("name a rule (code or name), or pass --all");

@@ -4,8 +4,9 @@
 
 #include <iostream>
 
-#include "cli.h"
-#include "lint/rule.h"
+#include "cli/cli.h"
+#include "lint/engine/rule.h"
+#include "rules/registry.h"
 
 namespace rrflint::cli {
 namespace {
@@ -44,7 +45,7 @@ std::shared_ptr<const Config> Settings::config_for(const std::string& dir) {
 
 std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli) {
   std::vector<RuleDecision> out;
-  for (const Rule* r : all_rules()) out.push_back({r, r->meta.default_enabled, Origin{}, "default"});
+  for (const Rule* r : builtin_rules().all()) out.push_back({r, r->meta.default_enabled, Origin{}, "default"});
   auto apply = [&](const SelectionLayer& layer) {
     if (layer.select.value) {
       const auto codes = selector_codes(*layer.select.value);

@@ -1,9 +1,9 @@
 // RRF104 apostrophe-in-string: `'` before a letter inside a quoted string is dropped and lower-cases the letter.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "../lint/values.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "lint/syntax/values.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

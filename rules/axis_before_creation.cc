@@ -1,7 +1,7 @@
 // RRF201 axis-before-creation: an axis letter used before the M584 that creates the axis.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF106 blank-before-colon: a blank before ':' silently ends a colon-separated list.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,7 +1,7 @@
 // RRF118 byte-order-mark: a UTF-8 byte-order mark at the start of a file spoils its first line.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

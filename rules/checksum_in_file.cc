@@ -1,8 +1,8 @@
 // RRF110 checksum-in-file: `N…` line numbers and `*…` checksums in a file; a wrong checksum drops the line.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF109 comment-closes-block: before 3.6.0-beta.3 a comment at column 0 ends every open block.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,7 +1,7 @@
 // RRF107 cr-line-endings: a file whose lines end with CR only is one line to RRF 3.4.6+/3.5.0b2+.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF116 duplicate-parameter: RRF reads the first of two parameters with one letter and ignores the second.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF105 exponent-swallows-parameter: `X80E420` is one number with an exponent to RRF, not X80 and E420.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

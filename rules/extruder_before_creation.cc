@@ -1,7 +1,7 @@
 // RRF202 extruder-before-creation: extruder values or extruder numbers before `M584 E…` creates the extruders.
 #include <algorithm>
 
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,9 +1,9 @@
 // RRF114 fractional-integer: a fraction where RRF reads an integer is silently dropped.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "../lint/values.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "lint/syntax/values.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

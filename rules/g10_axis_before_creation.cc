@@ -1,5 +1,5 @@
 // RRF302 g10-axis-before-creation: a tool offset on an axis that does not exist yet, or is hidden.
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

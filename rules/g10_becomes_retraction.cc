@@ -1,5 +1,5 @@
 // RRF303 g10-becomes-retraction: a G10 meant as an offset that RRF runs as firmware retraction.
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint::g10 {
 

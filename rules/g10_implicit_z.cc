@@ -1,5 +1,5 @@
 // RRF331 g10-implicit-z: a tool-offset G10 that leaves Z out where Z is provably 0 (opt-in).
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF309 g10-l20-at-boot: G10 L20 at boot sets a workplace origin relative to a position nobody knows yet.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,5 +1,5 @@
 // RRF306 g10-missing-z: a tool-offset G10 without Z where the tool's Z offset may be non-zero.
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF310 g10-no-tool-selected: a tool-form G10 or an M568 without P at boot, where no tool is selected.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -4,8 +4,8 @@
 #include <map>
 #include <tuple>
 
-#include "../lint/linter.h"
-#include "g10_common.h"
+#include "lint/engine/linter.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,5 +1,5 @@
 // RRF304 g10-offset-on-unmapped-axis: an X/Y/Z tool offset on an axis the tool's M563 map leaves out.
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF311 g10-report-only: `G10 P<n>` with nothing to set only prints the tool's settings.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF307 g10-temperature-form: G10 sets tool temperatures where M568 does that job (RRF 3.3+).
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF313 g10-temperature-out-of-range: a tool temperature at or above its heater's over-temperature limit.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF312 g10-temperature-without-heater: temperatures for a tool that has no heaters are silently ignored.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

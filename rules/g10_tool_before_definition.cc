@@ -1,5 +1,5 @@
 // RRF301 g10-tool-before-definition: a tool-form G10 for a tool that does not exist (yet).
-#include "g10_common.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

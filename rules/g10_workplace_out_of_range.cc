@@ -1,8 +1,8 @@
 // RRF308 g10-workplace-out-of-range: G10 L2/L20 with a coordinate system outside 1–9, or an L RRF rejects.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

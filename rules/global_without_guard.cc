@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -2,8 +2,8 @@
 // its default over-temperature monitor.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "g10_common.h"
+#include "lint/engine/rule.h"
+#include "rules/g10_common.h"
 
 namespace rrflint {
 namespace {

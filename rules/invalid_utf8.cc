@@ -1,7 +1,7 @@
 // RRF119 invalid-utf8: bytes that are not UTF-8 (a Latin-1 '°', a Windows-1252 quote), once per file.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "../lint/parser.h"
+#include "lint/syntax/parser.h"
 
 namespace rrflint::lex {
 

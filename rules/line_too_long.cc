@@ -1,7 +1,7 @@
 // RRF102 line-too-long: the stored part of a line exceeds the firmware's buffer.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF115 lowercase-axis-without-apostrophe: M584 `a3` is axis A; lowercase axes need `'a3`, and board support.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

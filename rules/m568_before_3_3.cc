@@ -1,8 +1,8 @@
 // RRF328 m568-before-3.3: M568 used for temperatures on RRF 3.2 or older, where it does nothing.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

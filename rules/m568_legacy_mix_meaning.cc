@@ -1,8 +1,8 @@
 // RRF329 m568-legacy-mix-meaning: `M568 P<n> S1`, the old "mixing on", now sets 1 °C.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

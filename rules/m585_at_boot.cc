@@ -1,8 +1,8 @@
 // RRF327 m585-at-boot: M585 (probe a tool offset) at boot, where no tool is selected and nothing is homed.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

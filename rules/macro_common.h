@@ -4,7 +4,7 @@
 #include <set>
 #include <vector>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 

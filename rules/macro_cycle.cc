@@ -1,7 +1,7 @@
 // RRF502 macro-cycle: M98 calls that form a cycle no condition breaks.
 #include <fmt/format.h>
 
-#include "macro_common.h"
+#include "rules/macro_common.h"
 
 namespace rrflint {
 namespace {

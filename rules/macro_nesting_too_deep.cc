@@ -1,7 +1,7 @@
 // RRF503 macro-nesting-too-deep: macro calls nest deeper than the firmware allows.
 #include <fmt/format.h>
 
-#include "macro_common.h"
+#include "rules/macro_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,7 +1,7 @@
 // RRF501 missing-macro: M98 names a file that is not on the SD card.
 #include <fmt/format.h>
 
-#include "macro_common.h"
+#include "rules/macro_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF108 mixed-indentation: tabs and spaces both indent one block, which RRF warns about.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,7 +1,7 @@
 // RRF505 path-outside-root: an M98 path that climbs above the SD card's root.
 #include <fmt/format.h>
 
-#include "macro_common.h"
+#include "rules/macro_common.h"
 
 namespace rrflint {
 namespace {

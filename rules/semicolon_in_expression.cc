@@ -1,8 +1,8 @@
 // RRF113 semicolon-in-expression: a ';' inside `{…}` still starts a comment and cuts the expression.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

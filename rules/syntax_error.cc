@@ -1,7 +1,7 @@
 // RRF100 syntax-error: a line RRF cannot parse.
 #include <algorithm>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

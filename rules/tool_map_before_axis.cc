@@ -1,8 +1,8 @@
 // RRF321 tool-map-before-axis: an M563 X/Y/Z map names an axis index that does not exist (yet) or is hidden.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,8 +1,8 @@
 // RRF323 tool-maps-overlap: the X, Y and Z maps of one M563 share an axis (defaults included).
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

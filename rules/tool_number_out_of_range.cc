@@ -1,8 +1,8 @@
 // RRF324 tool-number-out-of-range: M563 with a tool number above 49 (RRF 3.1+).
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,9 +1,9 @@
 // RRF325 tool-used-before-definition: M568/M567/M207 P<n> or T<n> before M563 creates tool n.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "g10_common.h"
-#include "tool_common.h"
+#include "lint/engine/rule.h"
+#include "rules/g10_common.h"
+#include "rules/tool_common.h"
 
 namespace rrflint {
 namespace {

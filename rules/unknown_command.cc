@@ -1,7 +1,7 @@
 // RRF101 unknown-command: a G/M code the target firmware does not implement, with no macro standing in.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
+#include "lint/engine/rule.h"
 
 namespace rrflint {
 namespace {
@@ -48,7 +48,7 @@ struct CodeRange {
 
 constexpr CodeRange kCodes[] = {
 #define CODE(l, n, f, a, b) {l, n, f, a, b},
-#include "../lint/command_table.inc"
+#include "lint/boot/command_table.inc"
 #undef CODE
 };
 

@@ -1,8 +1,8 @@
 // RRF103 unquoted-string: a string parameter written without the quotes RRF 3 requires.
 #include <fmt/format.h>
 
-#include "../lint/rule.h"
-#include "lex_common.h"
+#include "lint/engine/rule.h"
+#include "rules/lex_common.h"
 
 namespace rrflint {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "../lint/linter.h"
-#include "macro_common.h"
+#include "lint/engine/linter.h"
+#include "rules/macro_common.h"
 
 namespace rrflint {
 namespace {

@@ -1,9 +1,9 @@
-// The config file (lint/config.cc): keys, provenance, extend chains, errors with file:line, discovery, globs;
+// The config file (frontend/config.cc): keys, provenance, extend chains, errors with file:line, discovery, globs;
 // and the CLI behaviour that depends on it (check, config, exit codes).
 #include <catch2/catch.hpp>
 
-#include "cli_util.h"
-#include "lint/config.h"
+#include "tests/cli_util.h"
+#include "frontend/config.h"
 
 using namespace rrflint;
 using namespace rrflint::test;

@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli_util.h"
-#include "lint/disk.h"
+#include "tests/cli_util.h"
+#include "frontend/disk.h"
 
 using namespace rrflint;
 

@@ -21,7 +21,9 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
-#include "lint/linter.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
+#include "rules/registry.h"
 
 namespace fs = std::filesystem;
 using namespace rrflint;
@@ -272,7 +274,7 @@ std::unique_ptr<LintRun> lint_card(const std::map<std::string, std::string>& car
   auto run = std::make_unique<LintRun>();
   MemoryReader reader;
   for (const auto& [sd, text] : card) reader.add(sd, text);
-  run->result = lint_machine(run->sources, reader, options);
+  run->result = lint_machine(run->sources, reader, builtin_rules(), options);
   for (const Diagnostic& d : run->result.diagnostics) {
     Finding f;
     f.rule = std::string(d.name);
@@ -478,7 +480,7 @@ TEST_CASE("fixtures match the findings of their rule", "[fixtures]") {
   REQUIRE_FALSE(dirs.empty());
   for (const fs::path& dir : dirs) {
     const std::string rule = dir.filename().string();
-    const Rule* r = find_rule(rule);
+    const Rule* r = builtin_rules().find(rule);
     if (!r || r->meta.name != rule) {
       DYNAMIC_SECTION(rule) { FAIL(rel(dir) << ": '" << rule << "' is not the name of a rule"); }
       continue;
@@ -490,7 +492,7 @@ TEST_CASE("fixtures match the findings of their rule", "[fixtures]") {
 }
 
 TEST_CASE("every node rule has a well-formed `on` list", "[fixtures]") {
-  for (const Rule* r : all_rules()) {
+  for (const Rule* r : builtin_rules().all()) {
     Triggers t;
     std::string bad;
     const bool ok = parse_triggers(r->on, t, &bad);
@@ -520,7 +522,7 @@ TEST_CASE("a file rule that reads the machine is marked whole_card", "[fixtures]
     return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   };
   size_t file_rules = 0, marked = 0;
-  for (const Rule* r : all_rules()) {
+  for (const Rule* r : builtin_rules().all()) {
     if (!r->check_file) continue;
     ++file_rules;
     marked += r->whole_card;
@@ -545,7 +547,7 @@ TEST_CASE("a file rule that reads the machine is marked whole_card", "[fixtures]
 }
 
 TEST_CASE("every rule has fixtures with two positive and two negative cases", "[fixtures]") {
-  for (const Rule* r : all_rules()) {
+  for (const Rule* r : builtin_rules().all()) {
     const std::string name(r->meta.name);
     if (kRulesWithoutFixtures.count(name)) continue;
     const fs::path dir = kFixtureRoot / name;
@@ -561,6 +563,6 @@ TEST_CASE("every rule has fixtures with two positive and two negative cases", "[
   }
   for (const std::string& name : kRulesWithoutFixtures) {
     INFO("allowlisted rule " << name);
-    CHECK(find_rule(name) != nullptr);
+    CHECK(builtin_rules().find(name) != nullptr);
   }
 }

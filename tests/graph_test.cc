@@ -12,8 +12,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "lint/graph.h"
-#include "lint/linter.h"
+#include "lint/boot/graph.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 
 using namespace rrflint;
 
@@ -375,7 +376,7 @@ TEST_CASE("lint: threads report the same for files the graph loads while file ru
     o.threads = threads;
     o.part_bytes = 8;
     SourceManager sources;
-    MachineResult r = lint_machine(sources, reader, o);
+    MachineResult r = lint_machine(sources, reader, builtin_rules(), o);
     std::vector<std::string> out;
     for (const Diagnostic& d : r.diagnostics)
       out.push_back(sources.get(d.loc.file).sd_path() + " " + std::to_string(d.loc.span.begin) + " " +

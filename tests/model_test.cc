@@ -6,7 +6,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "lint/linter.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 
 using namespace rrflint;
 
@@ -35,7 +36,7 @@ std::unique_ptr<Run> boot(const std::map<std::string, std::string>& files, std::
   o.firmware = fw;
   o.board = board;
   o.select = {"syntax-error"};
-  r->result = lint_machine(r->sources, r->reader, o);
+  r->result = lint_machine(r->sources, r->reader, builtin_rules(), o);
   return r;
 }
 

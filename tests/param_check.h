@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "lint/parser.h"
+#include "lint/syntax/parser.h"
 
 namespace rrflint::test {
 

@@ -19,8 +19,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
-#include "lint/parser.h"
-#include "param_check.h"
+#include "lint/syntax/parser.h"
+#include "tests/param_check.h"
 
 using namespace rrflint;
 namespace fs = std::filesystem;

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "cli/cli.h"  // write_atomic (cli/fix.cc is built into the tests)
-#include "cli_util.h"
+#include "tests/cli_util.h"
 
 using namespace rrflint;
 using namespace rrflint::test;
@@ -527,13 +527,13 @@ TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load 
   SourceManager sm;
   LintOptions lo;
   lo.firmware = Version(3, 5, 0);
-  MachineResult r = lint_machine(sm, reader, lo);
+  MachineResult r = lint_machine(sm, reader, builtin_rules(), lo);
   REQUIRE(r.diagnostics.size() == 1);
   CHECK(r.diagnostics[0].code == "RRF506");
   CHECK(r.diagnostics[0].message == "macro file '/sys/tools.g' cannot be linted: permission denied");
   reader.denied = {"/sys/config.g"};
   SourceManager sm2;
-  r = lint_machine(sm2, reader, lo);
+  r = lint_machine(sm2, reader, builtin_rules(), lo);
   REQUIRE(r.machine->problems().size() == 1);
   CHECK(r.machine->problems()[0].sd_path == "/sys/config.g");  // the CLI makes this an error of the card (exit 2)
   CHECK(r.machine->unit_count() == 1);                            // tools.g is still linted, as an entry

@@ -6,9 +6,10 @@
 #include <set>
 #include <sstream>
 
-#include "cli_util.h"
+#include "tests/cli_util.h"
 #include "lint/render/render.h"
-#include "lint/rule.h"
+#include "lint/engine/rule.h"
+#include "rules/registry.h"
 
 using namespace rrflint;
 using namespace rrflint::test;
@@ -56,6 +57,7 @@ struct Sample {
 
 json sarif_of(const Sample& s, const fs::path& base = "/repo", const fs::path& cwd = "/repo") {
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = base;
   o.cwd = cwd;
   std::ostringstream os;
@@ -75,7 +77,7 @@ TEST_CASE("sarif: GitHub code scanning's required fields", "[sarif]") {
   CHECK(run["tool"]["driver"]["name"] == "rrflint");
   CHECK(run["tool"]["driver"]["version"] == RRFLINT_VERSION);
   const json& rules = run["tool"]["driver"]["rules"];
-  REQUIRE(rules.size() == all_rules().size());
+  REQUIRE(rules.size() == builtin_rules().all().size());
   std::set<std::string> ids;
   for (const json& r : rules) {
     INFO(r["id"]);
@@ -158,6 +160,7 @@ TEST_CASE("sarif: fingerprints follow the line's text, not its number", "[sarif]
     return d;
   };
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/r";
   auto hashes = [&](std::vector<Diagnostic> ds) {
     std::ostringstream os;
@@ -188,6 +191,7 @@ TEST_CASE("sarif: valid against the SARIF 2.1.0 schema", "[sarif][schema]") {
   TempTree t;
   Sample s;
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/repo";
   {
     std::ofstream out(t / "out.sarif");
@@ -220,6 +224,7 @@ TEST_CASE("sarif: valid against the SARIF 2.1.0 schema", "[sarif][schema]") {
 TEST_CASE("github: escaping, order, multi-line findings", "[github]") {
   Sample s;
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/repo";
   std::ostringstream os;
   render_github(os, s.sm, s.diags, o);
@@ -247,6 +252,7 @@ TEST_CASE("github: property values escape ':' and ','", "[github]") {
   d.loc = Location{f.id(), Span{0, 5}};
   d.message = "line one\nline two\r";
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/repo";
   std::ostringstream os;
   render_github(os, sm, {d}, o);
@@ -272,6 +278,7 @@ TEST_CASE("github: past GitHub's limits, errors first, the rest in a group and a
     ds.push_back(d);
   }
   RenderOptions o;
+  o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/r";
   std::ostringstream os;
   render_github(os, sm, ds, o);
@@ -294,6 +301,7 @@ TEST_CASE("github: past GitHub's limits, errors first, the rest in a group and a
 TEST_CASE("json-lines: one object per line, the same objects as json", "[json]") {
   Sample s;
   RenderOptions o;
+  o.rules = &builtin_rules();
   std::ostringstream jl, js;
   render_json_lines(jl, s.sm, s.diags, o);
   render_json(js, s.sm, s.diags, o);

@@ -1,4 +1,4 @@
-// Suppression comments (lint/suppress.cc): scopes, names, reasons, RRF900/RRF901 and their fixes,
+// Suppression comments (lint/engine/suppress.cc): scopes, names, reasons, RRF900/RRF901 and their fixes,
 // --no-inline-suppressions, per-file ignores, and the edits of --add-suppressions.
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "lint/linter.h"
-#include "lint/suppress.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
+#include "lint/engine/suppress.h"
 
 using namespace rrflint;
 
@@ -60,7 +61,7 @@ std::unique_ptr<Run> lint(const std::map<std::string, std::string>& files, LintO
   auto r = std::make_unique<Run>();
   for (const auto& [p, t] : files) r->reader.add(p, t);
   if (o.select.empty()) o.select = {"unknown-command", "unused-suppression", "unknown-rule-in-suppression"};
-  r->result = lint_machine(r->sm, r->reader, o);
+  r->result = lint_machine(r->sm, r->reader, builtin_rules(), o);
   return r;
 }
 
@@ -253,7 +254,7 @@ TEST_CASE("parse_directives resolves scopes", "[suppress]") {
                                "; rrflint: disable=RRF3 -- range\n"
                                "G1\n");
   ParsedFile pf = parse(f);
-  auto ds = parse_directives(pf);
+  auto ds = parse_directives(pf, builtin_rules());
   REQUIRE(ds.size() == 3);
   CHECK(ds[0].kind == DirectiveKind::Line);
   CHECK(ds[0].entries[0].first_line == 0);
@@ -280,7 +281,7 @@ TEST_CASE("suppression_edits: append, merge into an existing directive, file lev
                                                        {2, {"unknown-command"}},
                                                        {3, {"unknown-command", "line-too-long"}}};
   std::string text(f.text());
-  apply_edits(text, suppression_edits(pf, by_line, "legacy"));
+  apply_edits(text, suppression_edits(pf, builtin_rules(), by_line, "legacy"));
   CHECK(text ==
         "; rrflint: disable-file=unknown-command -- legacy\r\n"
         "; header\r\n"
@@ -295,7 +296,7 @@ TEST_CASE("suppression_edits: a line with a parse error gets a disable-next-line
   const FileUnit& u = r->result.machine->unit(0);
   std::map<uint32_t, std::vector<std::string>> by_line{{1, {"syntax-error"}}, {2, {"unknown-command"}}};
   std::string text(u.source->text());
-  apply_edits(text, suppression_edits(u.parsed, by_line, ""));
+  apply_edits(text, suppression_edits(u.parsed, builtin_rules(), by_line, ""));
   CHECK(text ==
         "if true\n"
         "  ; rrflint: disable-next-line=syntax-error\n"

@@ -6,7 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "lint/linter.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 
 using namespace rrflint;
 
@@ -19,7 +20,7 @@ std::vector<std::string> findings(const std::string& config, const std::string& 
   LintOptions o;
   o.select = {"ALL"};
   o.firmware = Version::parse(firmware);
-  const MachineResult r = lint_machine(sm, reader, o);
+  const MachineResult r = lint_machine(sm, reader, builtin_rules(), o);
   std::vector<std::string> out;
   for (const Diagnostic& d : r.diagnostics)
     out.push_back(fmt::format("{}:{}", sm.get(d.loc.file).position(d.loc.span.begin).line, d.code));

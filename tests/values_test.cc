@@ -6,7 +6,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "lint/values.h"
+#include "lint/syntax/values.h"
 
 using namespace rrflint;
 

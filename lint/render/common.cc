@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <set>
 
-#include "render.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 

@@ -8,7 +8,7 @@
 
 #include <array>
 
-#include "render.h"
+#include "lint/render/render.h"
 
 namespace fs = std::filesystem;
 

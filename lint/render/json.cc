@@ -3,7 +3,7 @@
 // ends are exclusive. `diagnostic_json` is shared with `json-lines`.
 #include <nlohmann/json.hpp>
 
-#include "render.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 

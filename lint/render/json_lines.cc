@@ -2,7 +2,7 @@
 // consumer can stream them). No summary line: an empty output means no findings.
 #include <nlohmann/json.hpp>
 
-#include "render.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 

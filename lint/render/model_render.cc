@@ -3,9 +3,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "../linter.h"
-#include "model_render.h"
-#include "render.h"
+#include "lint/engine/linter.h"
+#include "lint/render/model_render.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 namespace {

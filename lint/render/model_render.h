@@ -2,7 +2,7 @@
 #include <ostream>
 #include <string>
 
-#include "../linter.h"
+#include "lint/engine/linter.h"
 
 namespace rrflint {
 void render_model_text(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title);

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "../diagnostic.h"
-#include "../source.h"
+#include "lint/base/diagnostic.h"
+#include "lint/base/source.h"
 
 namespace rrflint {
 
@@ -22,7 +22,11 @@ namespace rrflint {
 inline constexpr std::string_view kDocsBase = "https://github.com/rrflint/rrflint/blob/main/docs/rules/";
 std::string rule_url(std::string_view name);
 
+class RuleSet;
+
 struct RenderOptions {
+  /// The rules that exist (SARIF lists them all in tool.driver.rules); null: none listed.
+  const RuleSet* rules = nullptr;
   bool color = false;
   bool show_fix_hint = true;        // the "N fixable with --fix" part of the summary
   bool unsafe_fixes_enabled = false;

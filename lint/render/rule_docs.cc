@@ -1,9 +1,9 @@
-#include "rule_docs.h"
+#include "lint/render/rule_docs.h"
 
 #include <fmt/format.h>
 
-#include "../rule.h"
-#include "render.h"
+#include "lint/engine/rule.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 namespace {
@@ -45,11 +45,11 @@ std::string cell(std::string_view s) {
   return out;
 }
 
-std::string tables(std::string_view link_prefix, std::string_view heading) {
+std::string tables(const RuleSet& rules, std::string_view link_prefix, std::string_view heading) {
   std::string out;
   for (const Block& b : kBlocks) {
     std::string rows;
-    for (const Rule* r : all_rules()) {
+    for (const Rule* r : rules.all()) {
       const RuleMeta& m = r->meta;
       if (m.code.size() < 4 || m.code[3] != b.digit) continue;
       rows += fmt::format("| {} | [{}]({}{}.md) | {} | {} | {} | {} |\n", m.code, m.name, link_prefix, m.name,
@@ -62,7 +62,7 @@ std::string tables(std::string_view link_prefix, std::string_view heading) {
   }
   // Rules outside the known blocks, so nothing is ever left out.
   std::string rest;
-  for (const Rule* r : all_rules()) {
+  for (const Rule* r : rules.all()) {
     const RuleMeta& m = r->meta;
     bool known = false;
     for (const Block& b : kBlocks) known = known || (m.code.size() >= 4 && m.code[3] == b.digit);
@@ -105,23 +105,23 @@ std::string rule_page(const Rule& r) {
                                            : "switch it on with `extend-select = [\"" + std::string(m.name) + "\"]`"));
 }
 
-std::string rule_index() {
+std::string rule_index(const RuleSet& rules) {
   return fmt::format(
       "{}\n# Rules\n\nEvery rule has a stable code and a name; both work everywhere a rule is named (`--select`, "
       "`--ignore`, `.rrflint.toml`, suppression comments). `default` says whether the rule runs without "
       "`--select`/`extend-select`; `fix` whether `--fix` can repair its findings.\n\n{}",
-      kBanner, tables("", "##"));
+      kBanner, tables(rules, "", "##"));
 }
 
-std::string readme_rule_list() {
+std::string readme_rule_list(const RuleSet& rules) {
   return fmt::format("\n{} rules; each links to its page under `docs/rules/` (`rrflint rule CODE` prints the same).\n\n{}",
-                     all_rules().size(), tables("docs/rules/", "###"));
+                     rules.all().size(), tables(rules, "docs/rules/", "###"));
 }
 
-std::map<std::string, std::string> generated_rule_docs() {
+std::map<std::string, std::string> generated_rule_docs(const RuleSet& rules) {
   std::map<std::string, std::string> out;
-  for (const Rule* r : all_rules()) out[std::string(r->meta.name) + ".md"] = rule_page(*r);
-  out["README.md"] = rule_index();
+  for (const Rule* r : rules.all()) out[std::string(r->meta.name) + ".md"] = rule_page(*r);
+  out["README.md"] = rule_index(rules);
   return out;
 }
 

@@ -11,6 +11,7 @@
 namespace rrflint {
 
 struct Rule;
+class RuleSet;
 
 inline constexpr std::string_view kRulesBegin = "<!-- rules:begin -->";
 inline constexpr std::string_view kRulesEnd = "<!-- rules:end -->";
@@ -18,11 +19,11 @@ inline constexpr std::string_view kRulesEnd = "<!-- rules:end -->";
 /// The page of one rule (also what `rrflint rule NAME` prints).
 std::string rule_page(const Rule& r);
 /// docs/rules/README.md: every rule, grouped by code block, linking to the pages.
-std::string rule_index();
+std::string rule_index(const RuleSet& rules);
 /// The README's rule list (the text between the markers, markers excluded).
-std::string readme_rule_list();
+std::string readme_rule_list(const RuleSet& rules);
 /// Every generated file of docs/rules, by file name.
-std::map<std::string, std::string> generated_rule_docs();
+std::map<std::string, std::string> generated_rule_docs(const RuleSet& rules);
 /// `readme` with the text between the markers replaced by `list`; nullopt when the markers are missing.
 std::optional<std::string> replace_rule_list(std::string_view readme, std::string_view list);
 

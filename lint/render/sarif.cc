@@ -8,8 +8,8 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "../rule.h"
-#include "render.h"
+#include "lint/engine/rule.h"
+#include "lint/render/render.h"
 
 namespace fs = std::filesystem;
 
@@ -180,10 +180,11 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
 
   json rules = json::array();
   std::map<std::string_view, size_t> index;
-  for (const Rule* r : all_rules()) {
-    index[r->meta.code] = rules.size();
-    rules.push_back(rule_json(*r));
-  }
+  if (o.rules)
+    for (const Rule* r : o.rules->all()) {
+      index[r->meta.code] = rules.size();
+      rules.push_back(rule_json(*r));
+    }
 
   json results = json::array();
   std::map<std::string, int> seen;

@@ -4,8 +4,8 @@
 
 #include <map>
 
-#include "../rule.h"
-#include "render.h"
+#include "lint/engine/rule.h"
+#include "lint/render/render.h"
 
 namespace rrflint {
 namespace {

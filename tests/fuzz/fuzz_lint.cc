@@ -14,9 +14,10 @@
 #include <sstream>
 #include <string>
 
-#include "lint/linter.h"
+#include "lint/engine/linter.h"
+#include "rules/registry.h"
 #include "lint/render/render.h"
-#include "../param_check.h"
+#include "tests/param_check.h"
 
 using namespace rrflint;
 
@@ -48,7 +49,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   o.tool_changer = sel & 0x40;
 
   SourceManager sources;
-  MachineResult r = lint_machine(sources, reader, o);
+  MachineResult r = lint_machine(sources, reader, builtin_rules(), o);
 
   // Parameters are lexed twice (while parsing, and again on demand): both must see the same parameters.
   for (uint32_t u = 0; u < r.machine->unit_count(); ++u) {
@@ -75,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     split.threads = 3;
     split.part_bytes = 8;
     SourceManager split_sources;
-    MachineResult sr = lint_machine(split_sources, reader, split);
+    MachineResult sr = lint_machine(split_sources, reader, builtin_rules(), split);
     std::ostringstream a, b;
     render_json(a, sources, r.diagnostics, ro);
     render_json(b, split_sources, sr.diagnostics, ro);

@@ -1,0 +1,300 @@
+#include "lint/boot/graph.h"
+
+#include <algorithm>
+#include <set>
+#include <unordered_map>
+
+#include "lint/syntax/values.h"
+
+namespace rrflint {
+
+std::string_view call_kind_name(CallKind k) {
+  switch (k) {
+    case CallKind::Boot: return "boot";
+    case CallKind::Entry: return "entry";
+    case CallKind::M98: return "M98";
+    case CallKind::M501: return "M501";
+    case CallKind::RunOnce: return "runonce";
+    case CallKind::ToolFree: return "tfree";
+    case CallKind::ToolPre: return "tpre";
+    case CallKind::ToolPost: return "tpost";
+  }
+  return "?";
+}
+
+void NodeTable::grow(size_t n) {
+  size_ += n;
+  while ((block_runs_.size() << kBlockBits) < size_) block_runs_.push_back(static_cast<uint32_t>(runs_.size() - 1));
+}
+
+void NodeTable::push_back(const Node& n) {
+  if (n.kind == NodeKind::Command && n.call_site == kNoNode) return push_commands(n, 1);
+  runs_.push_back(Run{static_cast<NodeId>(size_), kFull, static_cast<uint32_t>(full_.size())});
+  full_.push_back(n);
+  grow(1);
+}
+
+void NodeTable::push_commands(const Node& n, uint32_t count) {
+  if (count == 0) return;
+  const Frame f{n.call, n.maybe, n.depth, n.unit, n.enter};
+  const auto same = [&](const Frame& g) {
+    return g.call == f.call && g.maybe == f.maybe && g.depth == f.depth && g.unit == f.unit && g.enter == f.enter;
+  };
+  // The same frame as the last run, and the next command of it: the run grows.
+  if (!runs_.empty() && runs_.back().frame != kFull && same(frames_[runs_.back().frame]) &&
+      runs_.back().index + (size_ - runs_.back().first) == n.index)
+    return grow(count);
+  if (frames_.empty() || !same(frames_.back())) frames_.push_back(f);
+  runs_.push_back(Run{static_cast<NodeId>(size_), static_cast<uint32_t>(frames_.size() - 1), n.index});
+  grow(count);
+}
+
+namespace {
+
+class Builder {
+ public:
+  Builder(Machine& m, const GraphOptions& o) : m_(m), o_(o), sys_dir_(o.sys_dir) {}
+
+  Graph build();
+
+ private:
+  NodeId push(Node n) {
+    g_.nodes.push_back(n);
+    return static_cast<NodeId>(g_.nodes.size() - 1);
+  }
+  bool full() {
+    if (g_.nodes.size() >= o_.max_nodes) g_.truncated = true;
+    return g_.truncated;
+  }
+  void run_file(const FileUnit& u, CallKind call, NodeId call_site, bool maybe, uint16_t depth, uint32_t tool = 0);
+  void call(const std::string& name, CallKind kind, NodeId site, bool maybe, uint16_t depth, bool report_missing,
+            uint32_t tool = 0);
+  void tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth);
+  const FileUnit* tool_macro(std::string_view kind, int tool);
+  /// The commands of a file that the graph acts on (T, M98, M501, M505, no fraction), in order; found once a file.
+  const std::vector<uint32_t>& acting_commands(const FileUnit& u);
+
+  Machine& m_;
+  const GraphOptions& o_;
+  Graph g_;
+  std::string sys_dir_;
+  std::vector<uint32_t> stack_;  // units currently running (cycle detection)
+  std::set<uint32_t> reached_;   // units run by the boot sequence
+  bool booting_ = false;         // run_file is running the boot sequence: record the units it reaches
+  int current_tool_ = -1;        // -1 none, -2 unknown
+  std::unordered_map<uint64_t, std::optional<std::string>> m98_paths_;  // (unit, command) -> M98 P, if known
+  std::unordered_map<uint32_t, std::vector<uint32_t>> acting_;          // unit -> acting_commands
+};
+
+void Builder::call(const std::string& name, CallKind kind, NodeId site, bool maybe, uint16_t depth, bool report_missing,
+                   uint32_t tool) {
+  bool outside = false;
+  auto path = resolve_sd_path(sys_dir_, name, &outside);
+  if (!path) {
+    g_.events.push_back({outside ? GraphEvent::Kind::OutsideRoot : GraphEvent::Kind::OtherVolume, site, name});
+    return;
+  }
+  const FileUnit* u = m_.load(*path);
+  if (!u) {
+    bool unreadable = std::any_of(m_.problems().begin(), m_.problems().end(),
+                                  [&](const LoadProblem& p) { return to_lower(p.sd_path) == to_lower(*path); });
+    if (unreadable) g_.events.push_back({GraphEvent::Kind::UnreadableFile, site, *path});
+    else if (report_missing) g_.events.push_back({GraphEvent::Kind::MissingFile, site, *path});
+    return;
+  }
+  if (std::find(stack_.begin(), stack_.end(), u->index) != stack_.end()) {
+    g_.events.push_back({GraphEvent::Kind::Cycle, site, *path});
+    return;
+  }
+  const int limit = max_stack_depth(o_.firmware);
+  if (depth + 1 > limit || depth + 1 > 64) {
+    g_.events.push_back({GraphEvent::Kind::TooDeep, site, *path, limit});
+    return;
+  }
+  run_file(*u, kind, site, maybe, static_cast<uint16_t>(depth + 1), tool);
+}
+
+const FileUnit* Builder::tool_macro(std::string_view kind, int tool) {
+  auto numbered = resolve_sd_path(sys_dir_, std::string(kind) + std::to_string(tool) + ".g");
+  if (numbered)
+    if (const FileUnit* u = m_.load(*numbered)) return u;
+  if (o_.firmware >= Version(3, 5, 0, 0, 0)) {  // generic fallbacks from 3.5 (commit 7cea891d)
+    auto generic = resolve_sd_path(sys_dir_, std::string(kind) + ".g");
+    if (generic) return m_.load(*generic);
+  }
+  return nullptr;
+}
+
+const std::vector<uint32_t>& Builder::acting_commands(const FileUnit& u) {
+  auto [it, fresh] = acting_.try_emplace(u.index);
+  if (!fresh) return it->second;
+  const ParsedFile& pf = u.parsed;
+  std::vector<uint32_t>& out = it->second;
+  for (const auto& [letter, number] : {std::pair{'T', -1}, {'M', 98}, {'M', 501}, {'M', 505}})
+    for (uint32_t i : pf.with_code(letter, number))
+      if (pf.commands.code(i).fraction < 0) out.push_back(i);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth) {
+  const ParsedFile& pf = u.parsed;
+  int bits = 7;
+  auto p = get_int(pf, c, 'P');
+  if (p.known()) bits = static_cast<int>(p.value);
+  else if (p.present()) bits = -1;  // unknown
+  int target;
+  if (c.number_expr) target = -2;
+  else if (c.number < 0) target = -1;  // T-1: deselect
+  else target = c.number;
+  if (!c.has_number && !c.number_expr) return;  // a bare `T` only reports; `T R1` and friends: not modelled
+  if (target == -2 || bits < 0) {
+    current_tool_ = -2;
+    push(Node{NodeKind::ToolSelect, CallKind::Boot, true, depth, u.index, UINT32_MAX, g_.nodes[site].enter, site});
+    return;
+  }
+  if (target == current_tool_) return;  // same tool: no macros run
+  if ((bits & 1) && current_tool_ >= 0) {
+    if (const FileUnit* f = tool_macro("tfree", current_tool_))
+      call(f->sd_path, CallKind::ToolFree, site, maybe, depth, false, static_cast<uint32_t>(current_tool_));
+  }
+  if (target >= 0 && (bits & 2)) {
+    if (const FileUnit* f = tool_macro("tpre", target))
+      call(f->sd_path, CallKind::ToolPre, site, maybe, depth, false, static_cast<uint32_t>(target));
+  }
+  push(Node{NodeKind::ToolSelect, CallKind::Boot, maybe, depth, u.index,
+            target < 0 ? UINT32_MAX : static_cast<uint32_t>(target), g_.nodes[site].enter, site});
+  if (target >= 0 && (bits & 4)) {
+    if (const FileUnit* f = tool_macro("tpost", target))
+      call(f->sd_path, CallKind::ToolPost, site, maybe, depth, false, static_cast<uint32_t>(target));
+  }
+  current_tool_ = maybe ? -2 : target;
+}
+
+void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, bool maybe, uint16_t depth,
+                       uint32_t tool) {
+  if (full()) return;
+  if (booting_) reached_.insert(u.index);
+  const NodeId enter = push(Node{NodeKind::Enter, call_kind, maybe, depth, u.index, tool,
+                                 call_site == kNoNode ? kNoNode : g_.nodes[call_site].enter, call_site});
+  stack_.push_back(u.index);
+  const ParsedFile& pf = u.parsed;
+  // The commands between those the graph acts on are pushed a stretch at a time, cut where a block begins or ends.
+  const std::vector<uint32_t>& acts = acting_commands(u);
+  const auto& blocks = pf.block_commands;
+  auto block = blocks.begin();
+  uint32_t ci = 0;  // the next command to push
+  auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
+    while (ci < end) {
+      while (block != blocks.end() && block->second <= ci) ++block;
+      const bool in = block != blocks.end() && block->first <= ci;
+      const uint32_t stop = std::min(end, in ? block->second : block != blocks.end() ? block->first : end);
+      const size_t room = o_.max_nodes - std::min(o_.max_nodes, g_.nodes.size());
+      const auto n = static_cast<uint32_t>(std::min<size_t>(stop - ci, room));
+      g_.nodes.push_commands(Node{NodeKind::Command, call_kind, maybe || in, depth, u.index, ci, enter, kNoNode}, n);
+      ci += n;
+      if (ci < stop) {
+        g_.truncated = true;
+        return false;
+      }
+    }
+    return true;
+  };
+  for (const uint32_t a : acts) {
+    if (!push_until(a) || full()) break;
+    const CommandTable::Code code = pf.commands.code(a);
+    const bool m = maybe || pf.lines.in_block(code.line);
+    const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, a, enter, kNoNode});
+    ++ci;
+    if (code.letter == 'T') {
+      tool_change(u, pf.commands[a], id, m, depth);
+    } else if (code.number == 98) {
+      // A macro runs its M98 calls each time it runs (tool macros run for every T): read each path once.
+      auto [it, fresh] = m98_paths_.try_emplace(uint64_t{u.index} << 32 | a);
+      if (fresh) {
+        auto p = get_string(pf, pf.commands[a], 'P');
+        if (p.known()) it->second = std::move(p.value);
+      }
+      if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
+    } else if (code.number == 501) {
+      call("config-override.g", CallKind::M501, id, m, depth, true);
+    } else {  // M505
+      auto p = get_string(pf, pf.commands[a], 'P');
+      if (p.known() && !m) {
+        if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
+      }
+    }
+  }
+  if (!g_.truncated && !full()) push_until(static_cast<uint32_t>(pf.commands.size()));
+  stack_.pop_back();
+  push(Node{NodeKind::Leave, call_kind, maybe, depth, u.index, tool, enter, call_site});
+}
+
+Graph Builder::build() {
+  // Boot: config.g (fallback config.g.bak), then runonce.g.
+  const FileUnit* config = m_.load(o_.sys_dir + "/config.g");
+  if (!config) config = m_.load(o_.sys_dir + "/config.g.bak");
+  if (config) {
+    Segment seg;
+    seg.begin = 0;
+    seg.unit = config->index;
+    seg.boot = true;
+    booting_ = true;
+    run_file(*config, CallKind::Boot, kNoNode, false, 1);
+    if (const FileUnit* ro = m_.load(sys_dir_ + "/runonce.g")) {
+      if (std::find(stack_.begin(), stack_.end(), ro->index) == stack_.end())
+        run_file(*ro, CallKind::RunOnce, kNoNode, false, 1);
+    }
+    booting_ = false;
+    seg.end = static_cast<NodeId>(g_.nodes.size());
+    g_.segments.push_back(seg);
+  }
+  if (!o_.include_entries) return std::move(g_);
+  for (const std::string& path : machine_files(m_.reader(), o_.sys_dir)) {
+    if (full()) break;
+    const FileUnit* u = m_.load(path);
+    if (!u || reached_.count(u->index)) continue;
+    const std::string lower = to_lower(u->sd_path);
+    if (lower.ends_with("/config.g.bak") || lower.ends_with("/config-override.g")) {
+      // config-override.g not loaded by an M501 is still linted, as an entry.
+      if (lower.ends_with("/config.g.bak")) continue;
+    }
+    Segment seg;
+    seg.begin = static_cast<NodeId>(g_.nodes.size());
+    seg.unit = u->index;
+    current_tool_ = -2;
+    sys_dir_ = o_.sys_dir;
+    run_file(*u, CallKind::Entry, kNoNode, false, 1);
+    seg.end = static_cast<NodeId>(g_.nodes.size());
+    g_.segments.push_back(seg);
+  }
+  return std::move(g_);
+}
+
+bool is_gcode_name(std::string_view path, bool allow_no_extension) {
+  size_t slash = path.rfind('/');
+  std::string_view base = path.substr(slash == std::string_view::npos ? 0 : slash + 1);
+  if (base.empty() || base.front() == '.') return false;
+  std::string l = to_lower(base);
+  if (l.ends_with(".g")) return true;
+  return allow_no_extension && l.find('.') == std::string::npos;
+}
+
+}  // namespace
+
+std::vector<std::string> machine_files(FileReader& reader, const std::string& sys_dir) {
+  std::vector<std::string> out;
+  for (auto& p : reader.list(sys_dir))
+    if (is_gcode_name(p, false)) out.push_back(p);
+  for (auto& p : reader.list("/macros"))
+    if (is_gcode_name(p, true)) out.push_back(p);
+  for (auto& p : reader.list("/filaments"))
+    if (is_gcode_name(p, false)) out.push_back(p);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+Graph build_graph(Machine& machine, const GraphOptions& opts) { return Builder(machine, opts).build(); }
+
+}  // namespace rrflint

@@ -1,0 +1,348 @@
+#include "lint/engine/linter.h"
+
+#include <algorithm>
+#include <atomic>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include "lint/base/parallel.h"
+#include "lint/engine/suppress.h"
+#include "lint/base/trace.h"
+
+namespace rrflint {
+
+std::vector<const Rule*> enabled_rules(const RuleSet& rule_set, const LintOptions& o, std::vector<std::string>* errors) {
+  const auto& all = rule_set.all();
+  std::set<const Rule*> on;
+  auto add = [&](const std::vector<std::string>& names, bool insert) {
+    for (const std::string& n : names) {
+      if (to_lower(n) == "all") {
+        for (const Rule* r : all) insert ? (void)on.insert(r) : (void)on.erase(r);
+        continue;
+      }
+      // A code prefix such as "RRF3" selects a whole family.
+      std::vector<const Rule*> hit;
+      if (const Rule* exact = rule_set.find(n)) hit.push_back(exact);
+      else if (n.size() >= 4 && to_lower(n).starts_with("rrf"))
+        for (const Rule* r : all)
+          if (to_lower(r->meta.code).starts_with(to_lower(n))) hit.push_back(r);
+      if (hit.empty()) {
+        if (errors) errors->push_back(n);
+        continue;
+      }
+      for (const Rule* r : hit) insert ? (void)on.insert(r) : (void)on.erase(r);
+    }
+  };
+  if (o.select.empty()) {
+    for (const Rule* r : all)
+      if (r->meta.default_enabled) on.insert(r);
+  } else {
+    add(o.select, true);
+  }
+  add(o.extend_select, true);
+  add(o.ignore, false);
+  std::vector<const Rule*> out;
+  for (const Rule* r : all)
+    if (on.count(r)) out.push_back(r);
+  return out;
+}
+
+size_t apply_edits(std::string& text, std::vector<Edit> edits) {
+  std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+    return std::tie(a.loc.span.begin, a.loc.span.end) < std::tie(b.loc.span.begin, b.loc.span.end);
+  });
+  std::string out;
+  out.reserve(text.size() + 64);
+  uint32_t pos = 0;  // the end of the last edit applied
+  size_t applied = 0;
+  for (const Edit& e : edits) {
+    if (e.loc.span.end > text.size() || e.loc.span.begin > e.loc.span.end) continue;
+    if (e.loc.span.begin < pos) continue;  // overlaps: left for the next round
+    out.append(text, pos, e.loc.span.begin - pos);
+    out += e.replacement;
+    pos = e.loc.span.end;
+    ++applied;
+  }
+  out.append(text, pos, std::string::npos);
+  text = std::move(out);
+  return applied;
+}
+
+namespace {
+
+// Which check_node rules a node wakes: by command letter and number, from the rules' `on` lists.
+class NodeDispatch {
+ public:
+  NodeDispatch(const std::vector<const Rule*>& rules, bool every) {
+    for (const Rule* r : rules) {
+      if (!r->check_node) continue;
+      if (every) {
+        every_.push_back(r);
+        continue;
+      }
+      Triggers t;
+      parse_triggers(r->on, t);  // a malformed list is a test failure (tests/rules_test.cc), not a crash
+      if (t.any_t) t_.push_back(r);
+      for (auto [letter, n] : t.codes) {
+        auto& table = letter == 'G' ? g_ : m_;
+        if (n >= static_cast<int>(table.size())) table.resize(static_cast<size_t>(n) + 1);
+        if (table[n].empty() || table[n].back() != r) table[n].push_back(r);
+      }
+    }
+  }
+  /// The rules for a node that is not a command.
+  const std::vector<const Rule*>& rules_for_other() const { return every_; }
+  /// The rules for a command node of code `c`.
+  const std::vector<const Rule*>& rules_for(const CommandTable::Code& c) const {
+    if (!every_.empty()) return every_;
+    if (c.letter == 'T') return t_;
+    const auto& table = c.letter == 'G' ? g_ : m_;
+    if (c.number < 0 || c.number >= static_cast<int>(table.size())) return none_;
+    return table[c.number];
+  }
+
+ private:
+  std::vector<std::vector<const Rule*>> g_, m_;
+  std::vector<const Rule*> t_, every_, none_;
+};
+
+}  // namespace
+
+void shift_file_ids(MachineResult& r, FileId base) {
+  auto shift = [base](Location& l) {
+    if (l.file != kNoFile) l.file += base;
+  };
+  for (Diagnostic& d : r.diagnostics) {
+    shift(d.loc);
+    for (Note& n : d.notes) shift(n.loc);
+    if (d.fix)
+      for (Edit& e : d.fix->edits) shift(e.loc);
+  }
+  for (Evidence& e : r.target.evidence) shift(e.loc);
+}
+
+namespace {
+
+// 8. A file with CR-only line endings is one line to targets that do not end a line at CR (RRF107): the firmware
+// never sees its lines 2…n as lines, so nothing but RRF107 is reported on them. Earlier targets keep everything.
+void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& sources) {
+  if (!cr_is_not_a_line_end(res.target.version)) return;
+  std::vector<uint32_t> first_line_end(sources.size(), UINT32_MAX);  // by file: UINT32_MAX = not such a file
+  bool any = false;
+  for (FileId f = 0; f < sources.size(); ++f) {
+    const SourceFile& src = sources.get(f);
+    if (!src.endings().cr_only()) continue;
+    first_line_end[f] = src.line_span(0).end;
+    any = true;
+  }
+  if (!any) return;
+  std::erase_if(res.diagnostics, [&](const Diagnostic& d) {
+    return d.code != "RRF107" && d.loc.file < first_line_end.size() && d.loc.span.begin >= first_line_end[d.loc.file];
+  });
+}
+
+}  // namespace
+
+MachineResult lint_machine(SourceManager& sources, FileReader& reader, const RuleSet& rule_set,
+                           const LintOptions& options) {
+  MachineResult res;
+  res.machine = std::make_unique<Machine>(sources, reader);
+  Machine& m = *res.machine;
+  m.set_threads(options.threads, options.part_bytes);
+  const std::vector<const Rule*> rules = enabled_rules(rule_set, options);
+
+  // 1. Load and parse every file of the machine.
+  const FileUnit* config = m.load(options.sys_dir + "/config.g");
+  if (!config) config = m.load(options.sys_dir + "/config.g.bak");
+  {
+    std::vector<std::string> files = machine_files(reader, options.sys_dir);
+    m.set_listing(files);
+    if (options.include_entries)
+      for (const std::string& p : files) m.load(p);
+  }
+
+  // 2. The firmware target.
+  trace::mark("loaded");
+  res.target = infer_target(m, config, options.firmware, options.board);
+  trace::mark("target");
+
+  // 3. The ordered command graph, 4. per-file rules on every file loaded (including those the graph reached) and
+  // 5. the forward pass of the model with the node rules. A large machine runs the file rules and its suppression
+  // comments as tasks on other threads while this one builds the graph and runs the forward pass: the tasks that
+  // read only their own file start at once, those that need every file (Rule::whole_card, and the files the graph
+  // loads) once the graph is built. Each task reports to its own sink and the sinks are merged in a fixed order.
+  GraphOptions go;
+  go.firmware = res.target.version;
+  go.sys_dir = options.sys_dir;
+  go.include_entries = options.include_entries;
+  Sink sink;
+  std::optional<ModelBuilder> mb;
+  const NodeDispatch dispatch(rules, options.dispatch_every_node);
+  MachineState boot_end;
+  bool have_boot = false;
+  auto build = [&] {
+    res.graph = build_graph(m, go);
+    trace::mark("graph");
+    mb.emplace(m, res.graph, res.target.version, res.target.board);
+    boot_end = mb->initial_state();
+  };
+  auto forward_pass = [&](Sink& node_sink) {
+    auto check_node = [&](const MachineState& s, NodeId id, int runs, const Node& node,
+                          const std::vector<const Rule*>& node_rules) {
+      if (runs <= 0 || node_rules.empty()) return;
+      const NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
+      for (const Rule* r : node_rules) r->check_node(nc, node_sink);
+    };
+    for (const Segment& seg : res.graph.segments) {
+      MachineState s = seg.boot ? mb->initial_state() : boot_end;
+      if (!seg.boot && !have_boot) s.unknown_baseline = true;
+      for (NodeId id = seg.begin; id < seg.end;) {
+        const NodeTable::Stretch st = res.graph.nodes.stretch(id);
+        const NodeId end = std::min(st.end, seg.end);
+        if (st.node.kind != NodeKind::Command) {  // Enter, Leave, ToolSelect: a stretch of one
+          mb->decide(s, id, st.node);
+          check_node(s, id, mb->runs(id), st.node, dispatch.rules_for_other());
+          mb->step(s, id, st.node);
+          id = end;
+          continue;
+        }
+        // A run of commands of one file run: they all run or not alike. Most wake no rule and change nothing, so
+        // each command's code is read from its record and nothing more is done for those.
+        mb->decide_commands(s, id, end, st.node);
+        const int runs = mb->runs(id);
+        const CommandTable& commands = m.unit(st.node.unit).parsed.commands;
+        Node node = st.node;
+        for (; id < end; ++id) {
+          node.index = st.node.index + (id - st.begin);
+          const CommandTable::Code code = commands.code(node.index);
+          check_node(s, id, runs, node, dispatch.rules_for(code));
+          if (ModelBuilder::changes_state(code)) mb->step(s, id, node);
+        }
+      }
+      if (seg.boot) {
+        boot_end = s;
+        have_boot = true;
+      }
+    }
+    trace::mark("forward pass");
+  };
+  auto file_rules = [&](const FileUnit& u, Sink& out, bool whole_card) {
+    const FileContext fc{m, u, res.target, options};
+    for (const Rule* r : rules)
+      if (r->check_file && r->whole_card == whole_card) {
+        const trace::Scope time("rule", r->meta.name);
+        r->check_file(fc, out);
+      }
+  };
+  size_t bytes = 0;
+  for (uint32_t i = 0; i < m.unit_count(); ++i) bytes += m.unit(i).source->size();
+  std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
+  const bool parallel = options.threads > 1 && bytes >= 2 * options.part_bytes;
+  if (parallel) {
+    // The tasks: (file, rule) for the files loaded so far and the rules of one file; the suppression comments of
+    // those files; then, once the graph is built, each whole-card rule on every file, and all of the files the
+    // graph loaded.
+    // The files loaded so far, as pointers: the graph may add files (and move Machine's list) while tasks run.
+    std::vector<const FileUnit*> loaded;
+    for (uint32_t i = 0; i < m.unit_count(); ++i) loaded.push_back(&m.unit(i));
+    std::vector<std::pair<const FileUnit*, const Rule*>> own;
+    std::vector<const Rule*> whole;
+    for (const Rule* r : rules)
+      if (r->check_file && r->whole_card) whole.push_back(r);
+    for (const FileUnit* u : loaded)
+      for (const Rule* r : rules)
+        if (r->check_file && !r->whole_card) own.emplace_back(u, r);
+    const size_t n_dirs = options.inline_suppressions ? loaded.size() : 0;
+    const size_t n_early = own.size() + n_dirs;
+    std::vector<Sink> sinks(n_early + whole.size() + 1);
+    directives.resize(n_dirs);
+    std::vector<std::vector<Directive>> later_directives;  // of the files the graph loaded
+    Sink node_sink;
+    std::atomic<bool> built{false};
+    run_tasks(sinks.size(), options.threads,
+              [&] {
+                struct Done {  // the waiting tasks go on even if the graph throws (the error is rethrown)
+                  std::atomic<bool>& b;
+                  ~Done() {
+                    b = true;
+                    b.notify_all();
+                  }
+                };
+                {
+                  Done done{built};
+                  build();
+                }
+                forward_pass(node_sink);
+              },
+              [&](size_t k) {
+                if (k < own.size()) {
+                  const FileContext fc{m, *own[k].first, res.target, options};
+                  const trace::Scope time("rule", own[k].second->meta.name);
+                  return own[k].second->check_file(fc, sinks[k]);
+                }
+                if (k < n_early) {
+                  const trace::Scope time("suppression comments");
+                  directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed, rule_set);
+                  return;
+                }
+                built.wait(false);
+                if (k < n_early + whole.size()) {
+                  const Rule* r = whole[k - n_early];
+                  const trace::Scope time("rule", r->meta.name);
+                  for (uint32_t i = 0; i < m.unit_count(); ++i)
+                    r->check_file(FileContext{m, m.unit(i), res.target, options}, sinks[k]);
+                  return;
+                }
+                trace::mark("last task started");  // this branch is the last task
+                for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
+                  file_rules(m.unit(i), sinks[k], false);
+                  if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed, rule_set));
+                }
+              });
+    trace::mark("tasks joined");
+    for (auto& d : later_directives) directives.push_back(std::move(d));
+    for (Sink& part : sinks)
+      for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
+    for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
+  } else {
+    build();
+    for (uint32_t i = 0; i < m.unit_count(); ++i) {
+      file_rules(m.unit(i), sink, false);
+      file_rules(m.unit(i), sink, true);
+    }
+    forward_pass(sink);
+  }
+  res.end_of_boot = boot_end;
+  res.has_boot = have_boot;
+  {
+    EndContext ec{m, res.graph, res.target, options, boot_end};
+    for (const Rule* r : rules)
+      if (r->check_end) r->check_end(ec, sink);
+  }
+
+  // 6. Severity overrides, de-duplication (a macro run twice reports once), order.
+  auto& out = res.diagnostics;
+  for (Diagnostic& d : sink.diagnostics()) {
+    if (auto it = options.severity.find(std::string(d.code)); it != options.severity.end()) d.severity = it->second;
+    out.push_back(std::move(d));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.loc.file, a.loc.span.begin, a.code, a.loc.span.end) <
+           std::tie(b.loc.file, b.loc.span.begin, b.code, b.loc.span.end);
+  });
+  out.erase(std::unique(out.begin(), out.end(),
+                        [](const Diagnostic& a, const Diagnostic& b) {
+                          return a.code == b.code && a.loc.file == b.loc.file && a.loc.span == b.loc.span &&
+                                 a.message == b.message;
+                        }),
+            out.end());
+  // 7. Per-file ignores and suppression comments (lint/engine/suppress.cc), which add RRF900/RRF901.
+  trace::mark("end rules, sort");
+  apply_suppressions(res, rule_set, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
+  trace::mark("suppressions");
+  drop_after_first_line_of_cr_files(res, sources);
+  return res;
+}
+
+}  // namespace rrflint

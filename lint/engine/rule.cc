@@ -1,0 +1,91 @@
+#include "lint/engine/rule.h"
+
+#include <algorithm>
+
+namespace rrflint {
+
+RuleSet::RuleSet(std::vector<const Rule*> rules) : rules_(std::move(rules)) {
+  std::sort(rules_.begin(), rules_.end(), [](const Rule* a, const Rule* b) { return a->meta.code < b->meta.code; });
+}
+
+const Rule* RuleSet::find(std::string_view key) const {
+  std::string k = to_lower(key);
+  for (const Rule* r : rules_)
+    if (to_lower(r->meta.code) == k || r->meta.name == k) return r;
+  return nullptr;
+}
+
+Report& Report::note(Location loc, std::string message) {
+  d_->notes.push_back(Note{loc, std::move(message)});
+  return *this;
+}
+
+Report& Report::fix(Fix f) {
+  d_->fix = std::move(f);
+  return *this;
+}
+
+Report Sink::report(const RuleMeta& meta, Location loc, std::string message) {
+  return report(meta, meta.severity, loc, std::move(message));
+}
+
+Report Sink::report(const RuleMeta& meta, Severity sev, Location loc, std::string message) {
+  Diagnostic d;
+  d.code = meta.code;
+  d.name = meta.name;
+  d.severity = sev;
+  d.loc = loc;
+  d.message = std::move(message);
+  out_.push_back(std::move(d));
+  return Report(&out_.back());
+}
+
+Location NodeContext::where(NodeId other) const {
+  const Node& n = graph.nodes[other];
+  const FileUnit& u = machine.unit(n.unit);
+  if (n.kind == NodeKind::Command) return Location{u.source->id(), u.parsed.commands[n.index].span};
+  if (n.call_site != kNoNode) return where(n.call_site);
+  return Location{u.source->id(), Span{0, 0}};
+}
+
+Location EndContext::where(NodeId other) const {
+  NodeContext nc{machine, graph, target, options, end_of_boot, other, 2, graph.nodes[other]};
+  return nc.where(other);
+}
+
+const Segment& NodeContext::segment() const {
+  for (const Segment& s : graph.segments)
+    if (id >= s.begin && id < s.end) return s;
+  return graph.segments.front();
+}
+
+bool parse_triggers(std::string_view on, Triggers& out, std::string* bad) {
+  out = Triggers{};
+  while (!on.empty()) {
+    const size_t b = on.find_first_not_of(' ');
+    if (b == std::string_view::npos) break;
+    on.remove_prefix(b);
+    const std::string_view tok = on.substr(0, on.find(' '));
+    on.remove_prefix(tok.size());
+    if (tok == "T") {
+      out.any_t = true;
+      continue;
+    }
+    int n = 0;
+    bool ok = tok.size() >= 2 && tok.size() <= 5 && (tok[0] == 'G' || tok[0] == 'M');
+    for (size_t i = 1; ok && i < tok.size(); ++i) {
+      ok = tok[i] >= '0' && tok[i] <= '9';
+      n = n * 10 + (tok[i] - '0');
+    }
+    if (!ok) {
+      if (bad) *bad = std::string(tok);
+      return false;
+    }
+    out.codes.emplace_back(tok[0], n);
+  }
+  return true;
+}
+
+bool NodeContext::in_boot() const { return !graph.segments.empty() && segment().boot; }
+
+}  // namespace rrflint

@@ -1,0 +1,149 @@
+// The rule interface. A rule is metadata, Markdown docs and up to three pure check functions:
+//   check_file  per parsed file (lexical rules);
+//   check_node  per graph node, called with the machine state *before* the node runs;
+//   check_end   once per machine, with the graph and the end-of-boot state.
+// Rules report through a Sink and keep no state of their own between calls.
+#pragma once
+
+#include <deque>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "lint/base/diagnostic.h"
+#include "lint/boot/graph.h"
+#include "lint/boot/infer.h"
+#include "lint/boot/model.h"
+#include "lint/card/card.h"
+
+namespace rrflint {
+
+enum class FixAvailability : uint8_t { None, Sometimes, Always };
+
+struct RuleMeta {
+  std::string_view code;     // "RRF301"
+  std::string_view name;     // "g10-tool-before-definition"
+  Severity severity = Severity::Warning;
+  bool default_enabled = true;
+  FixAvailability fix = FixAvailability::None;
+  std::string_view summary;  // one sentence, also the first line of the docs
+  std::string_view docs;     // Markdown: What it does / Why is this bad? / Example / Use instead / Fix safety / References
+};
+
+struct LintOptions;
+class Sink;
+
+/// What a per-file rule sees.
+struct FileContext {
+  const Machine& machine;
+  const FileUnit& unit;
+  const Target& target;
+  const LintOptions& options;
+  const ParsedFile& parsed() const { return unit.parsed; }
+  const SourceFile& source() const { return *unit.source; }
+  Location at(Span s) const { return Location{unit.source->id(), s}; }
+};
+
+/// What a per-node rule sees: the node, the state before it runs, and the whole graph for look-ahead.
+struct NodeContext {
+  const Machine& machine;
+  const Graph& graph;
+  const Target& target;
+  const LintOptions& options;
+  const MachineState& state;  // before this node runs
+  NodeId id;
+  int runs;  // 2 = certainly runs, 1 = maybe (conditional), node effects are then unknown
+  Node self;  // graph.nodes[id], decoded once
+
+  const Node& node() const { return self; }
+  const FileUnit& unit() const { return machine.unit(self.unit); }
+  const ParsedFile& parsed() const { return unit().parsed; }
+  /// Valid for NodeKind::Command only.
+  Command command() const { return parsed().commands[self.index]; }
+  bool is_command() const { return self.kind == NodeKind::Command; }
+  bool is(char letter, int number) const {
+    if (!is_command()) return false;
+    const CommandTable::Code c = parsed().commands.code(self.index);
+    return c.letter == letter && c.number == number && c.fraction < 0;
+  }
+  ParamRef param(char letter) const { return parsed().find(command(), letter); }
+  Location at(Span s) const { return Location{unit().source->id(), s}; }
+  /// Location of any node's command (for notes: "tool 1 is created here").
+  Location where(NodeId other) const;
+  /// Is this node in the boot sequence (config.g and what it runs), rather than a standalone entry?
+  bool in_boot() const;
+  /// The segment holding this node.
+  const Segment& segment() const;
+};
+
+/// What an end-of-machine rule sees.
+struct EndContext {
+  const Machine& machine;
+  const Graph& graph;
+  const Target& target;
+  const LintOptions& options;
+  const MachineState& end_of_boot;
+  Location where(NodeId id) const;
+};
+
+/// Builder returned by Sink::report to add notes and a fix.
+class Report {
+ public:
+  explicit Report(Diagnostic* d) : d_(d) {}
+  Report& note(Location loc, std::string message);
+  Report& fix(Fix f);
+  Diagnostic& diagnostic() { return *d_; }
+
+ private:
+  Diagnostic* d_;
+};
+
+class Sink {
+ public:
+  /// Reports a finding of `meta` at `loc`. The severity is the rule's (possibly overridden) severity.
+  Report report(const RuleMeta& meta, Location loc, std::string message);
+  /// Same, with an explicit severity (rules with two levels, e.g. warning/info).
+  Report report(const RuleMeta& meta, Severity sev, Location loc, std::string message);
+  std::deque<Diagnostic>& diagnostics() { return out_; }
+
+ private:
+  std::deque<Diagnostic> out_;  // a deque: Report keeps a pointer while notes are added
+};
+
+struct Rule {
+  RuleMeta meta;
+  void (*check_file)(const FileContext&, Sink&) = nullptr;
+  void (*check_node)(const NodeContext&, Sink&) = nullptr;
+  void (*check_end)(const EndContext&, Sink&) = nullptr;
+  /// check_file reads more than its own file (FileContext::machine: the other files, Machine::has_file,
+  /// uses_code …). A large machine runs the other file rules while the graph is built and may still load files;
+  /// these run once it is built. (tests/fixtures_test.cc checks that a file rule naming the machine sets it.)
+  bool whole_card = false;
+  /// The commands check_node is called for, blank-separated: codes such as "G10 M563" (any fraction: "M569"
+  /// takes M569.1 too) and "T" for every T command. The linter calls check_node for those nodes only, so the
+  /// list must name every command the check can report on (the fixture runner checks it against a run that
+  /// calls every rule on every node).
+  std::string_view on;
+};
+
+/// A rule's `on` list, parsed. False (with the bad token in `bad`) on a malformed list.
+struct Triggers {
+  std::vector<std::pair<char, int>> codes;  // ('G', 10), ('M', 563)
+  bool any_t = false;
+};
+bool parse_triggers(std::string_view on, Triggers& out, std::string* bad = nullptr);
+
+/// The rules of a run, sorted by code. The engine knows no rule of its own accord: whoever runs it (the CLI,
+/// the tests, the fuzz targets, the benchmarks) passes the set, usually rules/registry.h's builtin_rules().
+class RuleSet {
+ public:
+  explicit RuleSet(std::vector<const Rule*> rules);
+  const std::vector<const Rule*>& all() const { return rules_; }
+  /// By code ("RRF301") or name ("g10-tool-before-definition"), case-insensitive; nullptr if unknown.
+  const Rule* find(std::string_view code_or_name) const;
+
+ private:
+  std::vector<const Rule*> rules_;
+};
+
+}  // namespace rrflint

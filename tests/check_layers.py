@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""The layering check: no #include points up a layer, and every project include is spelt from the repository root.
+
+Layers, lowest first (a file may include its own layer and those below it):
+  lint/base  lint/syntax  lint/card  lint/boot  lint/engine  lint/render  rules  frontend  cli  bench/tests
+The core (lint/) knows no rule and does no I/O of its own; rules/ sit on the engine; frontend/ (disk reader,
+.rrflint.toml) and cli/ sit on the rules. Run from anywhere: tests/check_layers.py [repository root].
+"""
+import os
+import re
+import sys
+
+LAYERS = ["lint/base", "lint/syntax", "lint/card", "lint/boot", "lint/engine", "lint/render", "rules",
+          "frontend", "cli", "bench", "tests"]
+TOP = {"bench": len(LAYERS), "tests": len(LAYERS)}  # test code may include anything
+INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+
+
+def layer_of(path):
+    for i, name in enumerate(LAYERS):
+        if path == name or path.startswith(name + "/"):
+            return TOP.get(name, i)
+    return None
+
+
+def main():
+    root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
+    problems = []
+    checked = 0
+    for top in ["lint", "rules", "frontend", "cli", "bench", "tests"]:
+        for dirpath, _, names in os.walk(os.path.join(root, top)):
+            for name in names:
+                if not name.endswith((".h", ".cc", ".inc", ".def")):
+                    continue
+                path = os.path.relpath(os.path.join(dirpath, name), root)
+                own = layer_of(path)
+                if own is None:
+                    problems.append(f"{path}: not in any layer (add its folder to tests/check_layers.py)")
+                    continue
+                checked += 1
+                with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+                    for n, line in enumerate(f, 1):
+                        m = INCLUDE.match(line)
+                        if not m:
+                            continue
+                        inc = m.group(1)
+                        if not os.path.isfile(os.path.join(root, inc)):
+                            problems.append(f"{path}:{n}: include \"{inc}\" is not spelt from the repository root")
+                            continue
+                        theirs = layer_of(inc)
+                        if theirs is None:
+                            problems.append(f"{path}:{n}: include \"{inc}\" is in no layer")
+                        elif theirs > own:
+                            problems.append(f"{path}:{n}: include \"{inc}\" points up a layer "
+                                            f"({LAYERS[min(own, len(LAYERS) - 1)]} -> {LAYERS[min(theirs, len(LAYERS) - 1)]})")
+    for p in problems:
+        print(p)
+    if checked == 0:
+        print("check_layers: no source file found under", root)
+        return 1
+    print(f"check_layers: {checked} files, {len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
