@@ -209,7 +209,7 @@ TEST_CASE("docs: every Example fires its rule and every Use instead stays silent
   CHECK(tested > 50);
 }
 
-TEST_CASE("docs: doc blocks split into files at `; file:` markers", "[docs]") {
+TEST_CASE("docs: doc blocks split into files at their file markers", "[docs]") {
   std::vector<std::string> problems;
   auto card = block_card("; rrflint-options: --firmware 3.2\nM563 P0 S\"T0\"\nT0\n; file: sys/tpost0.g\nG1 X0\n"
                          "; file: /macros/park.g\nG1 Y0\n",
