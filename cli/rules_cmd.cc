@@ -99,7 +99,7 @@ int run_rule(const RuleOptions& ro) {
                      {"fix_availability", fix_name(m.fix)},
                      {"summary", m.summary},
                      {"url", rule_url(m.name)},
-                     {"docs", m.docs}});
+                     {"docs", published_docs(m.docs)}});
     }
     std::cout << (ro.all ? arr : arr[0]).dump(2) << "\n";
     return kExitClean;

@@ -32,6 +32,7 @@ in every pass. RRF 3.6.0-beta.3 fixed this (Duet3D/RepRapFirmware issue 860).
 
 ## Example
 ```gcode
+; rrflint-options: --firmware 3.5
 if sensors.probes[0].value[0] > 500
   M291 P"Probe triggered" S1
 ; explain the next step
@@ -42,6 +43,7 @@ else
 
 ## Use instead
 ```gcode
+; rrflint-options: --firmware 3.5
 if sensors.probes[0].value[0] > 500
   M291 P"Probe triggered" S1
   ; explain the next step

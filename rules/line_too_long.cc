@@ -24,7 +24,7 @@ and carries on. Long `M587` network lines and long `M291` messages are the usual
 
 ## Example
 ```gcode
-M291 P"…a message of three hundred characters…" S2
+M291 P"Load filament: heat the nozzle to the temperature of the filament, open the idler lever and push the filament through the extruder until it comes out of the nozzle, then close the lever, wipe the nozzle and press OK. Press Cancel to stop without loading." R"Load filament" S3
 ```
 
 ## Use instead

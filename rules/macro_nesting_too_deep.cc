@@ -22,7 +22,18 @@ not run.
 
 ## Example
 ```gcode
-; config.g -> a.g -> b.g -> … eleven levels deep
+; rrflint-options: --firmware 3.0
+M98 P"a.g"      ; config.g is level 1, a.g level 2 …
+; file: sys/a.g
+M98 P"b.g"
+; file: sys/b.g
+M98 P"c.g"
+; file: sys/c.g
+M98 P"d.g"
+; file: sys/d.g
+M98 P"e.g"      ; level 6: past the limit of 5 of RRF 3.0
+; file: sys/e.g
+M564 H0
 ```
 
 ## Use instead

@@ -40,14 +40,17 @@ macro, which is what the Duet documentation recommends for config.g.
 M584 X0 Y1 Z2 E3
 M563 P0 D0
 T0
+; file: sys/tpost0.g
+G1 Y250 F6000
 ```
-with `sys/tpost0.g` holding `G1 Y250 F6000`.
 
 ## Use instead
 ```gcode
 M584 X0 Y1 Z2 E3
 M563 P0 D0
 T0 P0
+; file: sys/tpost0.g
+G1 Y250 F6000
 ```
 
 ## References

@@ -27,7 +27,7 @@ was meant to set up does not happen. A file saved in UTF-16 by a Windows editor 
 binary.
 
 ## Example
-```gcode
+```gcode no-test
 M98 P"tools.g"   ; sys/tools.g was saved as UTF-16
 ```
 

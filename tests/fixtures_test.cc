@@ -23,10 +23,11 @@
 
 #include "lint/engine/linter.h"
 #include "rules/registry.h"
-#include "rules/registry.h"
+#include "tests/lint_harness.h"
 
 namespace fs = std::filesystem;
 using namespace rrflint;
+using namespace rrflint::harness;
 
 namespace {
 
@@ -57,11 +58,6 @@ struct FixtureCase {
   std::map<std::string, fs::path> fixed;  // sd_path -> its .fixed.g file
 };
 
-struct CaseOptions {
-  LintOptions lint;
-  bool unsafe_fixes = false;
-};
-
 std::string read_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream ss;
@@ -72,20 +68,6 @@ std::string read_bytes(const fs::path& p) {
 std::string rel(const fs::path& p) { return fs::relative(p, fs::path(RRFLINT_SOURCE_DIR)).generic_string(); }
 
 bool is_fixed_file(const fs::path& p) { return p.filename().string().ends_with(".fixed.g"); }
-
-/// Lines as rrflint counts them (LF, CRLF and lone CR), as [begin, end) offsets without the terminator.
-std::vector<std::pair<size_t, size_t>> split_lines(std::string_view t) {
-  std::vector<std::pair<size_t, size_t>> out;
-  size_t b = 0;
-  for (size_t i = 0; i < t.size(); ++i) {
-    if (t[i] != '\n' && t[i] != '\r') continue;
-    out.emplace_back(b, i);
-    if (t[i] == '\r' && i + 1 < t.size() && t[i + 1] == '\n') ++i;
-    b = i + 1;
-  }
-  if (b < t.size() || out.empty()) out.emplace_back(b, t.size());
-  return out;
-}
 
 /// Finds `; expect:` (blanks allowed after ';') in a line. Returns the offset of the ';' or npos.
 size_t find_expect(std::string_view line) {
@@ -179,30 +161,9 @@ CaseOptions read_options(const FixtureCase& c, const std::string& rule, std::vec
   if (!config) return o;
   std::string_view text = config->original;
   std::string_view first = text.substr(0, split_lines(text).front().second);
-  const size_t at = first.find("rrflint-options:");
-  if (at == std::string_view::npos || first.substr(0, at).find(';') == std::string_view::npos) return o;
-  std::string_view rest = first.substr(at + 16);
-  rest = rest.substr(0, rest.find(';'));  // an expectation may follow on the same line
-  std::istringstream words{std::string(rest)};
-  std::string w;
-  while (words >> w) {
-    std::string arg;
-    if (w == "--tool-changer") {
-      o.lint.tool_changer = true;
-    } else if (w == "--unsafe-fixes") {
-      o.unsafe_fixes = true;
-    } else if (w == "--extend-select" && words >> arg) {
-      o.lint.extend_select.push_back(arg);  // another rule on as well (RRF900 needs a rule to suppress)
-    } else if (w == "--firmware" && words >> arg) {
-      if (auto v = Version::parse(arg)) o.lint.firmware = *v;
-      else errors.push_back(fmt::format("{}:1: bad --firmware '{}'", rel(config->disk), arg));
-    } else if (w == "--board" && words >> arg) {
-      if (auto b = parse_board(arg)) o.lint.board = *b;
-      else errors.push_back(fmt::format("{}:1: bad --board '{}'", rel(config->disk), arg));
-    } else {
-      errors.push_back(fmt::format("{}:1: unknown rrflint-options word '{}'", rel(config->disk), w));
-    }
-  }
+  std::vector<std::string> problems;
+  read_options_line(first, o, problems);
+  for (const std::string& p : problems) errors.push_back(fmt::format("{}:1: {}", rel(config->disk), p));
   return o;
 }
 
@@ -252,42 +213,6 @@ std::vector<fs::path> fixture_dirs() {
     if (e.is_directory()) dirs.push_back(e.path());
   std::sort(dirs.begin(), dirs.end());
   return dirs;
-}
-
-/// A finding reduced to what the fixtures compare.
-struct Finding {
-  std::string sd_path;
-  uint32_t line = 0;
-  std::string rule;
-  std::string message;
-  const Diagnostic* diag = nullptr;
-};
-
-struct LintRun {
-  SourceManager sources;
-  MachineResult result;
-  std::vector<Finding> findings;
-};
-
-/// Lints a card given as sd_path -> text.
-std::unique_ptr<LintRun> lint_card(const std::map<std::string, std::string>& card, const LintOptions& options) {
-  auto run = std::make_unique<LintRun>();
-  MemoryReader reader;
-  for (const auto& [sd, text] : card) reader.add(sd, text);
-  run->result = lint_machine(run->sources, reader, builtin_rules(), options);
-  for (const Diagnostic& d : run->result.diagnostics) {
-    Finding f;
-    f.rule = std::string(d.name);
-    f.message = d.message;
-    f.diag = &d;
-    if (d.loc.file != kNoFile && d.loc.file < run->sources.size()) {
-      const SourceFile& src = run->sources.get(d.loc.file);
-      f.sd_path = src.sd_path();
-      f.line = src.position(d.loc.span.begin).line;
-    }
-    run->findings.push_back(std::move(f));
-  }
-  return run;
 }
 
 std::string display(const FixtureCase& c, const std::string& sd_path) {

@@ -26,6 +26,7 @@ is.
 
 ## Example
 ```gcode
+; rrflint-options: --extend-select unknown-command
 M584 X0 Y1 Z2 ; rrflint: disable=unknown-command
 ```
 

@@ -78,9 +78,23 @@ std::string tables(const RuleSet& rules, std::string_view link_prefix, std::stri
 
 }  // namespace
 
+std::string published_docs(std::string_view docs) {
+  std::string out;
+  out.reserve(docs.size());
+  while (!docs.empty()) {
+    const size_t nl = docs.find('\n');
+    std::string_view line = docs.substr(0, nl);
+    docs = nl == std::string_view::npos ? std::string_view{} : docs.substr(nl + 1);
+    if (line.starts_with("```")) line = line.substr(0, line.find(' '));  // "```gcode no-test" -> "```gcode"
+    out += line;
+    if (nl != std::string_view::npos) out += '\n';
+  }
+  return out;
+}
+
 std::string rule_page(const Rule& r) {
   const RuleMeta& m = r.meta;
-  std::string docs(m.docs);
+  std::string docs = published_docs(m.docs);
   while (!docs.empty() && docs.front() == '\n') docs.erase(docs.begin());
   while (!docs.empty() && (docs.back() == '\n' || docs.back() == ' ')) docs.pop_back();
   std::string fix;

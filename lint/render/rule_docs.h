@@ -16,6 +16,9 @@ class RuleSet;
 inline constexpr std::string_view kRulesBegin = "<!-- rules:begin -->";
 inline constexpr std::string_view kRulesEnd = "<!-- rules:end -->";
 
+/// A rule's docs as published (its page, `rrflint rule --format json`, SARIF help): a code fence's info string
+/// is cut to its language, so the tests' own tag (```gcode no-test, tests/rule_docs_test.cc) does not show.
+std::string published_docs(std::string_view docs);
 /// The page of one rule (also what `rrflint rule NAME` prints).
 std::string rule_page(const Rule& r);
 /// docs/rules/README.md: every rule, grouped by code block, linking to the pages.

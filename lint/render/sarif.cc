@@ -10,6 +10,7 @@
 
 #include "lint/engine/rule.h"
 #include "lint/render/render.h"
+#include "lint/render/rule_docs.h"
 
 namespace fs = std::filesystem;
 
@@ -128,7 +129,7 @@ std::string_view category_tag(std::string_view code) {
 json rule_json(const Rule& r) {
   const RuleMeta& m = r.meta;
   const std::string md =
-      fmt::format("# {} {}\n\n{}\n{}", m.code, m.name, m.summary, m.docs);
+      fmt::format("# {} {}\n\n{}\n{}", m.code, m.name, m.summary, published_docs(m.docs));
   return {{"id", m.code},
           {"name", m.name},
           {"shortDescription", {{"text", m.summary}}},
