@@ -1,17 +1,14 @@
 // The fixture runner: every fixtures/<rule-name>/ case is linted with only that rule enabled, and its findings
-// must match the `; expect:` comments exactly (rule name and start line, both ways).
-//
-//   fixtures/<rule-name>/<case>.g        a one-file SD card: the file is /sys/config.g
-//   fixtures/<rule-name>/<case>/         a whole SD card (sys/config.g, macros/x.g, …)
-//   <case>.fixed.g, X.fixed.g beside X.g  the expected text after applying the rule's fixes
-//
-// Expectations: `; expect: a, b "message part"` at the end of a code line, or on a line of its own where it
-// applies to the next line that is not itself an expect line. Line 1 (of the file, or of sys/config.g) may be
-// `; rrflint-options: --firmware 3.3 --board duet2 --tool-changer --unsafe-fixes`. The expectation text is
-// blanked to spaces before linting (the ';' stays), so every offset and line number is unchanged.
+// must match the `; expect:` comments exactly (rule name, start line and, when given, column; both ways); its
+// `.fixed.g` files must match the text after the rule's fixes; and fixtures/<rule-name>/snapshot.txt must match
+// the text rendering of the rule's findings on every case (RRFLINT_UPDATE_SNAPSHOTS=1 rewrites it).
+// The format is documented in docs/fixtures.md; reading it is tests/fixture_format.h, linting a case in memory
+// tests/fixture_lint.h.
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -21,199 +18,22 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include "cli/cli.h"
 #include "lint/engine/linter.h"
 #include "rules/registry.h"
-#include "tests/lint_harness.h"
+#include "tests/fixture_format.h"
+#include "tests/fixture_lint.h"
 
 namespace fs = std::filesystem;
 using namespace rrflint;
-using namespace rrflint::harness;
+using namespace rrflint::fixture;
 
 namespace {
 
 /// Rules that have no fixtures yet because they are not implemented. Keep it empty when possible.
 const std::set<std::string> kRulesWithoutFixtures = {};
 
-const fs::path kFixtureRoot = fs::path(RRFLINT_SOURCE_DIR) / "fixtures";
-
-struct Expectation {
-  std::string sd_path;
-  uint32_t line = 0;  // 1-based
-  std::string rule;
-  std::string substring;  // empty: any message
-};
-
-struct CardFile {
-  std::string sd_path;
-  fs::path disk;         // where the fixture file lives, for messages
-  std::string original;  // with the expectation comments
-  std::string blanked;   // expectation text replaced by spaces
-};
-
-struct FixtureCase {
-  std::string rule;  // the rule under test (directory name)
-  std::string name;  // "<rule>/<case>"
-  fs::path path;     // the .g file or the folder
-  std::vector<CardFile> files;
-  std::map<std::string, fs::path> fixed;  // sd_path -> its .fixed.g file
-};
-
-std::string read_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string rel(const fs::path& p) { return fs::relative(p, fs::path(RRFLINT_SOURCE_DIR)).generic_string(); }
-
-bool is_fixed_file(const fs::path& p) { return p.filename().string().ends_with(".fixed.g"); }
-
-/// Finds `; expect:` (blanks allowed after ';') in a line. Returns the offset of the ';' or npos.
-size_t find_expect(std::string_view line) {
-  for (size_t k = line.find(';'); k != std::string_view::npos; k = line.find(';', k + 1)) {
-    size_t q = k + 1;
-    while (q < line.size() && (line[q] == ' ' || line[q] == '\t')) ++q;
-    if (line.substr(q).starts_with("expect:")) return k;
-  }
-  return std::string_view::npos;
-}
-
-/// Parses `name, name "text", …` after `expect:`. Returns false with `err` set when malformed.
-bool parse_expect_list(std::string_view s, std::vector<std::pair<std::string, std::string>>& out, std::string& err) {
-  size_t i = 0;
-  auto blanks = [&] {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t')) ++i;
-  };
-  for (;;) {
-    blanks();
-    size_t b = i;
-    // Rule names are kebab-case and may hold a version with dots (`m568-before-3.3`).
-    while (i < s.size() && ((s[i] >= 'a' && s[i] <= 'z') || (s[i] >= '0' && s[i] <= '9') || s[i] == '-' ||
-                            (s[i] == '.' && i > b && i + 1 < s.size() && s[i + 1] >= '0' && s[i + 1] <= '9')))
-      ++i;
-    if (i == b) {
-      err = "expected a rule name";
-      return false;
-    }
-    std::string name(s.substr(b, i - b));
-    std::string text;
-    blanks();
-    if (i < s.size() && s[i] == '"') {
-      size_t close = s.find('"', i + 1);
-      if (close == std::string_view::npos) {
-        err = "unterminated message substring";
-        return false;
-      }
-      text = std::string(s.substr(i + 1, close - i - 1));
-      i = close + 1;
-      blanks();
-    }
-    out.emplace_back(std::move(name), std::move(text));
-    if (i >= s.size()) return true;
-    if (s[i] != ',') {
-      err = "expected ',' between expectations";
-      return false;
-    }
-    ++i;
-  }
-}
-
-/// Collects the expectations of one file and blanks their text. Problems go to `errors`.
-void read_expectations(CardFile& f, std::vector<Expectation>& out, std::vector<std::string>& errors) {
-  f.blanked = f.original;
-  const auto lines = split_lines(f.original);
-  std::vector<size_t> pending;  // own-line expectations waiting for their line (indices into out)
-  for (size_t n = 0; n < lines.size(); ++n) {
-    const auto [b, e] = lines[n];
-    std::string_view line = std::string_view(f.original).substr(b, e - b);
-    const size_t semi = find_expect(line);
-    if (semi == std::string_view::npos) {
-      for (size_t k : pending) out[k].line = static_cast<uint32_t>(n + 1);
-      pending.clear();
-      continue;
-    }
-    const bool own_line = line.substr(0, semi).find_first_not_of(" \t") == std::string_view::npos;
-    std::string_view list = line.substr(line.find("expect:", semi) + 7);
-    std::vector<std::pair<std::string, std::string>> items;
-    std::string err;
-    if (!parse_expect_list(list, items, err))
-      errors.push_back(fmt::format("{}:{}: malformed expectation: {}", rel(f.disk), n + 1, err));
-    for (auto& [rule, text] : items) {
-      out.push_back(Expectation{f.sd_path, static_cast<uint32_t>(n + 1), rule, text});
-      if (own_line) pending.push_back(out.size() - 1);
-    }
-    std::fill(f.blanked.begin() + static_cast<ptrdiff_t>(b + semi + 1), f.blanked.begin() + static_cast<ptrdiff_t>(e),
-              ' ');
-  }
-  if (!pending.empty())
-    errors.push_back(fmt::format("{}: an own-line expectation at the end of the file has no line to apply to",
-                                 rel(f.disk)));
-}
-
-/// Reads `; rrflint-options:` from line 1 of config.g.
-CaseOptions read_options(const FixtureCase& c, const std::string& rule, std::vector<std::string>& errors) {
-  CaseOptions o;
-  o.lint.select = {rule};
-  const CardFile* config = nullptr;
-  for (const CardFile& f : c.files)
-    if (f.sd_path == "/sys/config.g") config = &f;
-  if (!config) return o;
-  std::string_view text = config->original;
-  std::string_view first = text.substr(0, split_lines(text).front().second);
-  std::vector<std::string> problems;
-  read_options_line(first, o, problems);
-  for (const std::string& p : problems) errors.push_back(fmt::format("{}:1: {}", rel(config->disk), p));
-  return o;
-}
-
-/// Every case of one fixture directory, sorted by name.
-std::vector<FixtureCase> discover_cases(const fs::path& dir) {
-  std::vector<FixtureCase> cases;
-  const std::string rule = dir.filename().string();
-  std::vector<fs::path> entries;
-  for (const auto& e : fs::directory_iterator(dir)) entries.push_back(e.path());
-  std::sort(entries.begin(), entries.end());
-  for (const fs::path& p : entries) {
-    FixtureCase c;
-    c.rule = rule;
-    c.path = p;
-    if (fs::is_directory(p)) {
-      c.name = rule + "/" + p.filename().string();
-      std::vector<fs::path> files;
-      for (const auto& e : fs::recursive_directory_iterator(p))
-        if (e.is_regular_file()) files.push_back(e.path());
-      std::sort(files.begin(), files.end());
-      for (const fs::path& f : files) {
-        const std::string sd = "/" + fs::relative(f, p).generic_string();
-        if (is_fixed_file(f)) {
-          c.fixed[sd.substr(0, sd.size() - 8) + ".g"] = f;  // "X.fixed.g" -> "X.g"
-          continue;
-        }
-        c.files.push_back(CardFile{sd, f, read_bytes(f), {}});
-      }
-    } else if (p.extension() == ".g" && !is_fixed_file(p)) {
-      c.name = rule + "/" + p.filename().string();
-      c.files.push_back(CardFile{"/sys/config.g", p, read_bytes(p), {}});
-      fs::path fixed = p;
-      fixed.replace_extension(".fixed.g");
-      if (fs::exists(fixed)) c.fixed["/sys/config.g"] = fixed;
-    } else {
-      continue;
-    }
-    cases.push_back(std::move(c));
-  }
-  return cases;
-}
-
-std::vector<fs::path> fixture_dirs() {
-  std::vector<fs::path> dirs;
-  if (!fs::is_directory(kFixtureRoot)) return dirs;
-  for (const auto& e : fs::directory_iterator(kFixtureRoot))
-    if (e.is_directory()) dirs.push_back(e.path());
-  std::sort(dirs.begin(), dirs.end());
-  return dirs;
-}
+const fs::path kFixtureRoot = fixture_root();
 
 std::string display(const FixtureCase& c, const std::string& sd_path) {
   for (const CardFile& f : c.files)
@@ -221,9 +41,20 @@ std::string display(const FixtureCase& c, const std::string& sd_path) {
   return rel(c.path) + ":" + sd_path;
 }
 
+/// Does the finding match the expectation in everything but its column?
+bool matches_but_column(const Expectation& x, const Finding& f) {
+  return x.sd_path == f.sd_path && x.line == f.line && x.item.rule == f.rule &&
+         (x.item.substring.empty() || f.message.find(x.item.substring) != std::string::npos);
+}
+
 bool matches(const Expectation& x, const Finding& f) {
-  return x.sd_path == f.sd_path && x.line == f.line && x.rule == f.rule &&
-         (x.substring.empty() || f.message.find(x.substring) != std::string::npos);
+  return matches_but_column(x, f) && (!x.item.column || *x.item.column == f.column);
+}
+
+/// `rule-name@5 "part"` as it was written.
+std::string spelled(const ExpectItem& x) {
+  return x.rule + (x.column ? "@" + std::to_string(*x.column) : "") +
+         (x.substring.empty() ? "" : " \"" + x.substring + "\"");
 }
 
 /// The fixes of `rule` in a lint run, by sd_path, at the allowed applicability.
@@ -241,15 +72,9 @@ std::map<std::string, std::vector<Edit>> applicable_edits(const LintRun& run, co
   return edits;
 }
 
-std::map<std::string, std::string> blanked_card(const std::map<std::string, std::string>& texts, FixtureCase& c) {
+std::map<std::string, std::string> blanked_card(const std::map<std::string, std::string>& texts, const FixtureCase& c) {
   std::map<std::string, std::string> out;
-  for (const auto& [sd, text] : texts) {
-    CardFile f{sd, c.path, text, {}};
-    std::vector<Expectation> ignored;
-    std::vector<std::string> errors;
-    read_expectations(f, ignored, errors);
-    out[sd] = f.blanked;
-  }
+  for (const auto& [sd, text] : texts) out[sd] = read_expectations(text, sd, rel(c.path)).blanked;
   return out;
 }
 
@@ -319,13 +144,12 @@ void check_fixes(FixtureCase& c, const CaseOptions& opts) {
 
 void run_case(FixtureCase& c) {
   std::vector<std::string> errors;
-  std::vector<Expectation> expected;
-  for (CardFile& f : c.files) read_expectations(f, expected, errors);
-  CaseOptions opts = read_options(c, c.rule, errors);
+  const std::vector<Expectation> expected = read_case_expectations(c, errors);
+  CaseOptions opts = read_options(c, errors);
   for (const std::string& e : errors) FAIL_CHECK(e);
   for (const Expectation& x : expected)
-    if (x.rule != c.rule)
-      FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": expects '" << x.rule
+    if (x.item.rule != c.rule)
+      FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": expects '" << x.item.rule
                                        << "', but only the rule under test ('" << c.rule << "') runs here");
   if (std::none_of(c.files.begin(), c.files.end(), [](const CardFile& f) { return f.sd_path == "/sys/config.g"; }))
     FAIL_CHECK(c.name << ": the card has no sys/config.g");
@@ -338,10 +162,7 @@ void run_case(FixtureCase& c) {
     LintOptions every = opts.lint;
     every.dispatch_every_node = true;
     auto all_nodes = lint_card(card, every);
-    std::vector<std::string> a, b;
-    for (const Finding& f : run->findings) a.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
-    for (const Finding& f : all_nodes->findings)
-      b.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+    const std::vector<std::string> a = finding_lines(*run), b = finding_lines(*all_nodes);
     for (const std::string& x : b)
       if (std::find(a.begin(), a.end(), x) == a.end())
         FAIL_CHECK(c.name << ": found only when every node is checked (add the command to the rule's `on`): " << x);
@@ -355,12 +176,7 @@ void run_case(FixtureCase& c) {
     split.threads = 3;
     split.part_bytes = 16;
     auto threaded = lint_card(card, split);
-    auto list = [](const auto& findings) {
-      std::vector<std::string> out;
-      for (const Finding& f : findings) out.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
-      return out;
-    };
-    CHECK(list(threaded->findings) == list(run->findings));
+    CHECK(finding_lines(*threaded) == finding_lines(*run));
   }
 
   if (c.rule != "syntax-error") {
@@ -373,29 +189,104 @@ void run_case(FixtureCase& c) {
     }
   }
 
+  // A finding that an expectation names but for its column is reported once, as the column mismatch.
+  std::vector<bool> explained(run->findings.size(), false);
   for (const Expectation& x : expected) {
-    if (x.rule != c.rule) continue;
-    if (std::none_of(run->findings.begin(), run->findings.end(), [&](const Finding& f) { return matches(x, f); })) {
-      std::string also;
-      for (const Finding& f : run->findings)
-        if (f.sd_path == x.sd_path && f.line == x.line) also += "\n    reported instead: " + f.message;
-      FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": missing " << x.rule << " finding"
-                                       << (x.substring.empty() ? "" : " with \"" + x.substring + "\"") << also);
+    if (x.item.rule != c.rule) continue;
+    if (std::any_of(run->findings.begin(), run->findings.end(), [&](const Finding& f) { return matches(x, f); }))
+      continue;
+    std::string got;
+    for (size_t i = 0; i < run->findings.size(); ++i) {
+      if (!matches_but_column(x, run->findings[i])) continue;
+      got += (got.empty() ? "" : ", ") + std::to_string(run->findings[i].column);
+      explained[i] = true;
     }
+    if (!got.empty()) {
+      FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": " << spelled(x.item) << ": expected column "
+                                       << *x.item.column << ", got " << got);
+      continue;
+    }
+    std::string also;
+    for (const Finding& f : run->findings)
+      if (f.sd_path == x.sd_path && f.line == x.line)
+        also += fmt::format("\n    reported instead at column {}: {}", f.column, f.message);
+    FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": missing " << x.item.rule << " finding"
+                                     << (x.item.column ? " at column " + std::to_string(*x.item.column) : "")
+                                     << (x.item.substring.empty() ? "" : " with \"" + x.item.substring + "\"")
+                                     << also);
   }
-  for (const Finding& f : run->findings) {
-    if (std::none_of(expected.begin(), expected.end(), [&](const Expectation& x) { return matches(x, f); }))
-      FAIL_CHECK(display(c, f.sd_path) << ":" << f.line << ": unexpected " << f.rule << ": " << f.message);
+  for (size_t i = 0; i < run->findings.size(); ++i) {
+    const Finding& f = run->findings[i];
+    if (explained[i] || std::any_of(expected.begin(), expected.end(), [&](const Expectation& x) { return matches(x, f); }))
+      continue;
+    FAIL_CHECK(display(c, f.sd_path) << ":" << f.line << ":" << f.column << ": unexpected " << f.rule << ": "
+                                     << f.message);
   }
 
   if (!c.fixed.empty()) check_fixes(c, opts);
 }
 
 bool has_expectations(FixtureCase& c) {
-  std::vector<Expectation> expected;
   std::vector<std::string> errors;
-  for (CardFile& f : c.files) read_expectations(f, expected, errors);
-  return !expected.empty();
+  return !read_case_expectations(c, errors).empty();
+}
+
+/// Removes the blanks at the end of every line (the blanked expectation comments leave runs of them).
+std::string trim_line_ends(std::string_view s) {
+  std::string out;
+  size_t b = 0;
+  while (b < s.size()) {
+    size_t e = s.find('\n', b);
+    const bool nl = e != std::string_view::npos;
+    if (!nl) e = s.size();
+    std::string_view line = s.substr(b, e - b);
+    while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    out += line;
+    if (nl) out += '\n';
+    b = e + 1;
+  }
+  return out;
+}
+
+/// What fixtures/<rule-name>/snapshot.txt must hold: a `## <case>` header and the text report of each case.
+std::string render_snapshot(const fs::path& dir) {
+  const std::string rule = dir.filename().string();
+  std::string out = fmt::format(
+      "# The text rendering (rrflint check, no colour) of {}'s findings on each fixture case; docs/fixtures.md.\n"
+      "# Regenerate: RRFLINT_UPDATE_SNAPSHOTS=1 ctest --test-dir build -R snapshots\n",
+      rule);
+  for (FixtureCase& c : discover_cases(dir)) {
+    std::vector<std::string> errors;  // reported by the fixture test of the case
+    read_case_expectations(c, errors);
+    const CaseOptions opts = read_options(c, errors);
+    std::map<std::string, std::string> card;
+    for (const CardFile& f : c.files) card[f.sd_path] = f.blanked;
+    auto run = lint_card(card, opts.lint);
+    out += "\n## " + c.label + "\n" + trim_line_ends(render_text_report(*run, opts.unsafe_fixes));
+  }
+  return out;
+}
+
+bool updating_snapshots() {
+  const char* v = std::getenv("RRFLINT_UPDATE_SNAPSHOTS");
+  return v && *v && std::string_view(v) != "0";
+}
+
+/// The first lines of a unified diff, for a failure message.
+std::string diff_excerpt(const std::string& want, const std::string& got, const fs::path& path) {
+  const std::string diff = cli::unified_diff(want, got, rel(path));
+  constexpr size_t kMaxLines = 60;
+  std::string out;
+  size_t lines = 0, b = 0;
+  for (; b < diff.size() && lines < kMaxLines; ++lines) {
+    size_t e = diff.find('\n', b);
+    if (e == std::string::npos) e = diff.size() - 1;
+    out.append(diff, b, e - b + 1);
+    b = e + 1;
+  }
+  if (b < diff.size())
+    out += fmt::format("… ({} more lines)\n", std::count(diff.begin() + static_cast<ptrdiff_t>(b), diff.end(), '\n'));
+  return out;
 }
 
 }  // namespace
@@ -412,6 +303,45 @@ TEST_CASE("fixtures match the findings of their rule", "[fixtures]") {
     }
     for (FixtureCase& c : discover_cases(dir)) {
       DYNAMIC_SECTION(c.name) { run_case(c); }
+    }
+  }
+}
+
+TEST_CASE("fixture snapshots match the text rendering", "[fixtures][snapshots]") {
+  // RRFLINT_UPDATE_SNAPSHOTS=1 rewrites every snapshot that differs (or is missing) instead of failing.
+  const auto dirs = fixture_dirs();
+  REQUIRE_FALSE(dirs.empty());
+  const bool update = updating_snapshots();
+  for (const fs::path& dir : dirs) {
+    const Rule* r = builtin_rules().find(dir.filename().string());
+    if (!r || r->meta.name != dir.filename().string()) continue;  // reported by the fixture test
+    DYNAMIC_SECTION(dir.filename().string()) {
+      const fs::path path = snapshot_path(dir);
+      const std::string got = render_snapshot(dir);
+      const bool exists = fs::exists(path);
+      const std::string want = exists ? read_bytes(path) : std::string();
+      if (got == want) continue;
+      if (update) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out << got;
+        out.close();
+        if (!out) FAIL_CHECK(rel(path) << ": could not be written");
+        else WARN(rel(path) << (exists ? ": updated" : ": created"));
+        continue;
+      }
+      if (!exists)
+        FAIL_CHECK(rel(path) << ": missing; create it with RRFLINT_UPDATE_SNAPSHOTS=1 ctest --test-dir build -R "
+                                "snapshots, and read it before committing it");
+      if (!exists) continue;
+      // The diff goes to stderr as it is: Catch wraps its messages at 80 columns, which mangles a diff.
+      std::cout.flush();
+      std::cerr << rel(path) << ": the text rendering differs from the snapshot (- snapshot, + now):\n"
+                << diff_excerpt(want, got, path) << std::flush;
+      FAIL_CHECK(rel(path) << ": the text rendering of the rule's findings differs from the snapshot (the diff is "
+                              "on stderr). If the change is intended, regenerate the snapshots with "
+                              "RRFLINT_UPDATE_SNAPSHOTS=1 ctest --test-dir build -R snapshots (or "
+                              "RRFLINT_UPDATE_SNAPSHOTS=1 build/rrflint_tests '[snapshots]') and review git diff "
+                              "fixtures/");
     }
   }
 }

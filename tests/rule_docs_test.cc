@@ -23,10 +23,11 @@
 #include "lint/render/rule_docs.h"
 #include "lint/engine/rule.h"
 #include "rules/registry.h"
-#include "tests/lint_harness.h"
+#include "tests/fixture_format.h"
+#include "tests/fixture_lint.h"
 
 using namespace rrflint;
-using namespace rrflint::harness;
+using namespace rrflint::fixture;
 
 namespace {
 
@@ -177,7 +178,7 @@ TEST_CASE("docs: every Example fires its rule and every Use instead stays silent
       CaseOptions o;
       o.lint.select = {rule};
       const std::string_view first = std::string_view(b.text).substr(0, b.text.find('\n'));
-      read_options_line(first, o, problems);
+      read_options_line(first, o, where, problems);
       if (b.text.find("rrflint-options:", first.size()) != std::string::npos)
         problems.push_back("`; rrflint-options:` counts only on the block's first line");
       if (card.empty()) problems.push_back("the block is empty");
