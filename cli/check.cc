@@ -385,6 +385,14 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   std::error_code ec;
   RenderOptions ro;
   ro.rules = &builtin_rules();
+  // One report, one docs base: that of the first machine's settings (the command line's order), else the
+  // working directory's.
+  {
+    Effective first;
+    Job none;
+    if (!job_settings(jobs.empty() ? none : jobs.front(), settings, 1, first)) first.docs_base = default_docs_base();
+    ro.docs_base = first.docs_base;
+  }
   ro.files_checked = t.files;
   ro.fixed = t.fixed;
   ro.unsafe_fixes_enabled = co.unsafe_fixes;

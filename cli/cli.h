@@ -5,6 +5,7 @@
 //   check.cc     `rrflint check`: lint, --fix/--diff/--add-suppressions, render, exit code
 //   fix.cc       the fix loop, atomic writes, unified diffs
 //   rules_cmd.cc `rrflint rule`: docs, JSON metadata, --generate-docs
+//   docs_url.cc  where the printed rule links point by default
 #pragma once
 
 #include <filesystem>
@@ -47,6 +48,7 @@ struct Effective {
   LintOptions lint;
   Severity fail_on = Severity::Warning;
   std::shared_ptr<const Config> config;  // null: no config file
+  std::string docs_base;                 // rule pages: `docs-url`, else default_docs_base()
   std::vector<std::string> problems;     // unknown rule names on the command line
 };
 
@@ -81,6 +83,13 @@ struct RuleDecision {
   std::string why;  // "default", "select", "extend-select", "ignore"
 };
 std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli);
+
+/// The folder of the rule pages when no `docs-url` is set (docs_url.cc): RRFLINT_DOCS_URL of the build, else the
+/// installed docs, else (running from the build tree, or nothing installed) the source tree's docs/rules/. A URL
+/// ending with '/'.
+std::string default_docs_base();
+/// A folder as a file:/// URL ending with '/', percent-encoded.
+std::string file_url(const fs::path& dir);
 
 /// `rrflint config [PATH]`.
 int run_config(const CliOptions& cli, const std::string& path);
@@ -222,7 +231,8 @@ struct RuleOptions {
   std::string readme;        // --readme FILE: also rewrite its rule list
   bool check = false;        // --check: only report stale files (exit 1)
 };
-int run_rule(const RuleOptions& ro);
+/// `cli` gives --config / --isolated: the `docs-url` of the config found from the working directory is used.
+int run_rule(const RuleOptions& ro, const CliOptions& cli);
 
 /// The git top-level folder holding `dir`, found by looking for `.git`; nullopt outside a repository.
 std::optional<fs::path> repo_root(const fs::path& dir);

@@ -170,6 +170,8 @@ int main(int argc, char** argv) {
   rule->add_option("--generate-docs", ro.generate_dir, "Write every rule's page and an index to this folder");
   rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list");
   rule->add_flag("--check", ro.check, "With --generate-docs: write nothing, exit 1 when a file is stale");
+  rule->add_option("--config", cli.config_path, "With --format json: the config file whose docs-url the links follow");
+  rule->add_flag("--isolated", cli.isolated, "Ignore every config file");
 
   // config
   CLI::App* config = app.add_subcommand("config", "Print the effective settings for a path and where each came from");
@@ -189,7 +191,7 @@ int main(int argc, char** argv) {
     return kExitError;
   }
 
-  if (rule->parsed()) return run_rule(ro);
+  if (rule->parsed()) return run_rule(ro, cli);
 
   for (CLI::App* sub : {check, model, config}) {
     if (!sub->parsed()) continue;

@@ -74,7 +74,7 @@ int generate(const RuleOptions& ro) {
 
 }  // namespace
 
-int run_rule(const RuleOptions& ro) {
+int run_rule(const RuleOptions& ro, const CliOptions& cli) {
   using nlohmann::json;
   if (!ro.generate_dir.empty()) return generate(ro);
   std::vector<const Rule*> list;
@@ -88,6 +88,14 @@ int run_rule(const RuleOptions& ro) {
     return kExitError;
   }
   if (ro.format == "json") {
+    // The links follow `docs-url` of the config that governs the working directory, as `check` does there.
+    std::error_code ec;
+    Settings settings(cli);
+    Effective eff;
+    if (!settings.effective(fs::current_path(ec), eff)) {
+      error(settings.config_error()->str());
+      return kExitError;
+    }
     json arr = json::array();
     for (const Rule* r : list) {
       const RuleMeta& m = r->meta;
@@ -98,7 +106,7 @@ int run_rule(const RuleOptions& ro) {
                      {"fix", fix_name(m.fix)},
                      {"fix_availability", fix_name(m.fix)},
                      {"summary", m.summary},
-                     {"url", rule_url(m.name)},
+                     {"url", rule_url(eff.docs_base, m.name)},
                      {"docs", published_docs(m.docs)}});
     }
     std::cout << (ro.all ? arr : arr[0]).dump(2) << "\n";

@@ -109,6 +109,7 @@ void Settings::resolve(std::shared_ptr<const Config> config, Effective& out) {
   if (cfg)
     for (const auto& [code, s] : cfg->severity) out.lint.severity[code] = *s.value;
   out.lint.inline_suppressions = !cli_.no_inline_suppressions;
+  out.docs_base = cfg && cfg->docs_url.value ? *cfg->docs_url.value : default_docs_base();
   if (cfg && !cfg->per_file_ignores.empty()) {
     std::error_code ec;
     const fs::path cwd = fs::current_path(ec);
@@ -188,6 +189,8 @@ int run_config(const CliOptions& cli, const std::string& path_arg) {
       origin_of(cli.tool_changer, cfg ? cfg->tool_changer : no_t));
   row("inline suppressions", eff.lint.inline_suppressions ? "on" : "off",
       cli.no_inline_suppressions ? "command line" : "default");
+  Setting<std::string> no_d;
+  row("docs-url", fmt::format("\"{}\"", eff.docs_base), origin_of(false, cfg ? cfg->docs_url : no_d));
   if (cfg) {
     for (const SelectionLayer& l : cfg->selection) {
       if (l.select.value) row("select", quoted_list(*l.select.value), l.select.origin.str());

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <set>
 #include <toml++/toml.h>
 
@@ -123,6 +124,12 @@ struct Loader {
         auto sev = parse_severity(s);
         if (!sev) return fail(abs, v.source(), fmt::format("'fail-on': '{}' is not error, warning or info", s));
         cfg.fail_on = {*sev, origin(abs, at)};
+      } else if (key == "docs-url") {
+        std::string s, why;
+        if (!string_value(abs, v, key, s)) return false;
+        auto url = parse_docs_url(s, &why);
+        if (!url) return fail(abs, v.source(), "'docs-url': " + why);
+        cfg.docs_url = {*url, origin(abs, at)};
       } else if (key == "exclude") {
         const toml::array* arr = v.as_array();
         if (!arr) return fail(abs, v.source(), "'exclude' must be an array of path patterns");
@@ -164,7 +171,7 @@ struct Loader {
       } else {
         return fail(abs, at,
                     fmt::format("unknown key '{}' (known: extend, select, extend-select, ignore, firmware, board, "
-                                "fail-on, exclude, [severity], [machine], [per-file-ignores])",
+                                "fail-on, exclude, docs-url, [severity], [machine], [per-file-ignores])",
                                 key));
       }
     }
@@ -250,6 +257,37 @@ bool match_parts(const std::vector<std::string_view>& p, size_t pi, const std::v
 }
 
 }  // namespace
+
+std::optional<std::string> parse_docs_url(std::string_view url, std::string* why) {
+  auto no = [&](std::string msg) -> std::optional<std::string> {
+    if (why) *why = std::move(msg);
+    return std::nullopt;
+  };
+  std::string lower(url);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  size_t rest = 0;
+  if (lower.starts_with("https://")) rest = 8;
+  else if (lower.starts_with("http://")) rest = 7;
+  else if (lower.starts_with("file://")) rest = 7;
+  else
+    return no(fmt::format("'{}' is not an http://, https:// or file:/// URL (the folder holding the rule pages, "
+                          "e.g. \"https://example.org/rrflint/docs/rules/\")",
+                          url));
+  if (lower.starts_with("file://")) {
+    if (url.size() <= rest || url[rest] != '/')
+      return no(fmt::format("'{}': a file URL needs an absolute path, file:///path/to/docs/rules/", url));
+  } else if (url.size() <= rest || url[rest] == '/') {
+    return no(fmt::format("'{}' has no host", url));
+  }
+  for (unsigned char c : url)
+    if (c <= 0x20 || c == 0x7F || c == '"' || c == '<' || c == '>' || c == '\\')
+      return no(fmt::format("'{}' contains a blank or a character a URL cannot hold (percent-encode it)", url));
+  if (url.find_first_of("?#") != std::string_view::npos)
+    return no(fmt::format("'{}' has a query or fragment: rrflint appends <rule-name>.md to it", url));
+  std::string out(url);
+  if (!out.ends_with('/')) out += '/';
+  return out;
+}
 
 bool rule_selector_known(std::string_view v) {
   if (to_lower(v) == "all" || builtin_rules().find(v)) return true;

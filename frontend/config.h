@@ -9,6 +9,7 @@
 //   board = "duet3-6hc"
 //   fail-on = "error"                  # lowest severity that makes the exit code 1
 //   exclude = ["old/**", "*.bak.g"]    # paths not to lint (relative to this file; no '/' = any folder level)
+//   docs-url = "https://example.org/rrflint/docs/rules/"   # where rule pages are linked: <docs-url><name>.md
 //   [severity]
 //   RRF306 = "error"                   # or by name: g10-missing-z = "error"
 //   [machine]
@@ -74,6 +75,7 @@ struct Config {
   Setting<Board> board;
   Setting<Severity> fail_on;
   Setting<bool> tool_changer;
+  Setting<std::string> docs_url;  // http(s):// or file:/// folder of the rule pages, ending with '/'
   std::vector<PathPattern> per_file_ignores;
   std::vector<PathPattern> exclude;
 };
@@ -92,6 +94,10 @@ std::optional<Config> load_config(const std::filesystem::path& file, ConfigError
 /// The nearest `.rrflint.toml` from `dir` upward. The search stops after a folder holding `.git` (the
 /// repository root) or at the file-system root.
 std::optional<std::filesystem::path> find_config(const std::filesystem::path& dir);
+
+/// Checks a `docs-url` value: an http://, https:// or file:/// (absolute) URL of a folder, with no query,
+/// fragment or blank. Returns the value with a trailing '/' added, or nullopt with `why` set.
+std::optional<std::string> parse_docs_url(std::string_view url, std::string* why);
 
 /// Is this a rule selector rrflint knows: a code, a name, a code prefix ("RRF3") or "ALL"?
 bool rule_selector_known(std::string_view selector);

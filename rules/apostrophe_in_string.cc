@@ -42,9 +42,9 @@ The fix doubles the apostrophe, which keeps it in the text as written. It is saf
 letter that is already lower case changes nothing else, and nobody writes one on purpose in a message.
 
 ## References
-- rrf-semantics §1.10, R46; spec-verification §12c (StringParser.cpp `InternalGetQuotedString()`,
-  ExpressionParser.cpp `ParseQuotedString()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes (quoted strings)
+- rrflint: [Strings](../firmware-behaviour.md#strings)
+- Duet3D G-code dictionary: [Quoted strings](https://docs.duet3d.com/User_manual/Reference/Gcodes#quoted-strings)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`InternalGetQuotedString()`), [ExpressionParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/ExpressionParser.cpp) (`ParseQuotedString()`)
 )md",
 };
 

@@ -38,8 +38,9 @@ M92 X80 Y80 Z400 U80
 ```
 
 ## References
-- rrf-semantics §2.1, §2.11, §3.2 (GCodes2.cpp M92/M350/M906 loops over `numTotalAxes`); R24, R30
-- spec-verification §10, X2 (G31 `C`)
+- rrflint: [Other ordering rules](../firmware-behaviour.md#other-ordering-rules), [Axes and M584](../firmware-behaviour.md#axes-and-m584)
+- Duet3D G-code dictionary: [M584: set drive mapping](https://docs.duet3d.com/User_manual/Reference/Gcodes#m584-set-drive-mapping) (order dependency), [Command Order](https://docs.duet3d.com/User_manual/Reference/Gcodes#command-order), [G31](https://docs.duet3d.com/User_manual/Reference/Gcodes#g31-set-or-report-current-probe-status) (`C` and axis offsets)
+- RepRapFirmware 3.5.3: [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (M92/M350/M906 loop over the existing axes), [ZProbe.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Endstops/ZProbe.cpp) (G31 axis offsets); [3.2.2 ZProbe.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.2.2/src/Endstops/ZProbe.cpp) (G31 `C` is the temperature coefficient)
 )md",
 };
 

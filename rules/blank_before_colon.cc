@@ -39,7 +39,8 @@ The fix removes the blanks before each `:` of the list. It is safe: it makes RRF
 written.
 
 ## References
-- rrf-semantics §1.9, R48; spec-verification §12b (StringParser.cpp `GetFloatArray()` and friends, separator test)
+- rrflint: [Numbers and lists](../firmware-behaviour.md#numbers-and-lists)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`GetFloatArray()` and its siblings: the list goes on only at a `:`)
 )md",
 };
 

@@ -41,6 +41,7 @@ The fix removes the three bytes of the mark. It is safe: nothing else in the fil
 then reads as its author wrote it.
 
 ## References
+- rrflint: [Lines and line endings](../firmware-behaviour.md#lines-and-line-endings), [Command words](../firmware-behaviour.md#command-words)
 - https://github.com/Duet3D/RepRapFirmware/blob/3.6-dev/src/GCodes/GCodeBuffer/StringParser.cpp (`Put()` stores
   every byte of a line; `DecodeCommand()` reports a line that does not start with a command letter)
 - https://docs.duet3d.com/User_manual/Reference/Gcodes

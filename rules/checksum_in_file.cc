@@ -34,8 +34,9 @@ M584 X0 Y1 Z2 E3
 ```
 
 ## References
-- rrf-semantics §1.3, R51 (StringParser.cpp `Put()` line number and checksum states, `LineFinished()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes (checksums)
+- rrflint: [Line numbers and checksums](../firmware-behaviour.md#line-numbers-and-checksums)
+- Duet3D G-code dictionary: [Checking](https://docs.duet3d.com/User_manual/Reference/Gcodes#checking) (line numbers, checksums and CRCs)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()` line-number and checksum states, `LineFinished()`)
 )md",
 };
 

@@ -46,8 +46,9 @@ The fix moves the commands after the macro call to a line of their own, with the
 unsafe: those commands have not run so far, and will once fixed.
 
 ## References
-- rrf-semantics §1.7, R49 (StringParser.cpp `FindParameters()`; GCode dictionary "multiple commands on a line")
-- https://docs.duet3d.com/User_manual/Reference/Gcodes
+- rrflint: [Several commands on one line](../firmware-behaviour.md#several-commands-on-one-line)
+- Duet3D G-code dictionary: [Multiple commands on a single line](https://docs.duet3d.com/User_manual/Reference/Gcodes#multiple-commands-on-a-single-line)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`FindParameters()` ends a command at the next G or M)
 )md",
 };
 

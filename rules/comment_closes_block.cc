@@ -57,9 +57,10 @@ The fix indents the comment like the line before it, which is what RRF 3.6.0-bet
 safe: it keeps the block as its indentation shows it.
 
 ## References
-- rrf-semantics §1.4, R44; spec-verification §12e (StringParser.cpp `Put()`, `CheckMetaCommand()`,
-  `ProcessElseCommand()`; Duet3D/RepRapFirmware issue 860)
-- https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands (indentation of comments)
+- rrflint: [Comments](../firmware-behaviour.md#comments) (column-0 comments and blocks), [Errors and aborts](../firmware-behaviour.md#errors-and-aborts)
+- Duet3D meta commands: [Indentation of comments](https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands#indentation-of-comments), [Blocks and indentation](https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands#blocks-and-indentation)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()`, `CheckMetaCommand()`, `ProcessElseCommand()`)
+- [RepRapFirmware issue 860](https://github.com/Duet3D/RepRapFirmware/issues/860) (fixed for 3.6.0-beta.3)
 )md",
 };
 

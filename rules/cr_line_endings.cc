@@ -36,7 +36,9 @@ Save the file with LF (or CRLF) line endings.
 The fix replaces every lone CR with LF. It is safe: it changes only line endings.
 
 ## References
-- rrf-semantics §1.1, spec-verification §12f (StringParser.cpp `Put()`, commits 188115d1 / 1acd1a17)
+- rrflint: [Lines and line endings](../firmware-behaviour.md#lines-and-line-endings)
+- Duet3D meta commands: [Line Endings](https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands#line-endings)
+- RepRapFirmware `Put()` in [3.4.5 StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.4.5/src/GCodes/GCodeBuffer/StringParser.cpp) (CR ends a line) and [3.4.6 StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.4.6/src/GCodes/GCodeBuffer/StringParser.cpp) (CR is dropped in files)
 )md",
 };
 

@@ -41,7 +41,9 @@ When the repeat has exactly the same value as the first (`S150 S150`), the fix r
 never read it. A repeat with a different value is not fixed, since only the author knows which one is meant.
 
 ## References
-- rrf-semantics §1.8 (StringParser.cpp `Seen()` returns the first match; DSF ParserAsync.cs keeps the first)
+- rrflint: [Parameters](../firmware-behaviour.md#parameters)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Seen()` returns the first match)
+- [DSF ParserAsync.cs](https://github.com/Duet3D/DuetSoftwareFramework/blob/v3.5.3/src/DuetAPI/Commands/Code/ParserAsync.cs) (keeps the first as well)
 )md",
 };
 

@@ -41,8 +41,9 @@ The fix inserts a blank before the `E`. It is safe: it gives the line the meanin
 its author intended.
 
 ## References
-- rrf-semantics §1.8, R47; spec-verification §12a (StringParser.cpp `FindParameters()`, `Seen()`;
-  RRFLibraries NumericConverter.cpp)
+- rrflint: [Parameters](../firmware-behaviour.md#parameters), [The SBC parser](../firmware-behaviour.md#the-sbc-parser)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`FindParameters()`, `Seen()`: no parameter letter E after a digit)
+- [RRFLibraries NumericConverter.cpp](https://github.com/Duet3D/RRFLibraries/blob/3.5-dev/src/General/NumericConverter.cpp) (exponents)
 )md",
 };
 

@@ -48,8 +48,9 @@ M563 P0 D0 H1
 ```
 
 ## References
-- rrf-semantics §2.1, §2.11, R17, R25; spec-verification §7, §10 (Tool.cpp `Tool::Create()`,
-  StringParser.cpp `CheckArrayLength()`, Move.cpp `ConfigurePressureAdvance()`)
+- rrflint: [Other ordering rules](../firmware-behaviour.md#other-ordering-rules), [M563 tools](../firmware-behaviour.md#m563-tools), [Axes and M584](../firmware-behaviour.md#axes-and-m584)
+- Duet3D G-code dictionary: [M584: set drive mapping](https://docs.duet3d.com/User_manual/Reference/Gcodes#m584-set-drive-mapping), [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- RepRapFirmware 3.5.3: [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`Tool::Create()`: `bad drive number`), [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`CheckArrayLength()`), [Move.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Movement/Move.cpp) (`ConfigurePressureAdvance()`), [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (no extruders by default)
 )md",
 };
 

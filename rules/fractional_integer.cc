@@ -39,8 +39,9 @@ M950 H1 C"out1" T1
 ```
 
 ## References
-- rrf-semantics §1.9, R55 (StringParser.cpp `ReadIValue()`, `ReadUIValue()`, `GetIntArray()`; RRFLibraries
-  `StrToI32`, `StrToU32`)
+- rrflint: [Numbers and lists](../firmware-behaviour.md#numbers-and-lists)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`ReadIValue()`, `ReadUIValue()`, `GetIntArray()`)
+- [RRFLibraries SafeStrtod.cpp](https://github.com/Duet3D/RRFLibraries/blob/3.5-dev/src/General/SafeStrtod.cpp) (`StrToI32()`, `StrToU32()`)
 )md",
 };
 

@@ -46,7 +46,9 @@ same tool lies in between, the fix moves the G10 line to just after that M584. I
 takes effect.
 
 ## References
-- rrf-semantics §2.3, R05; spec-verification §2 (GCodes.cpp `SetOrReportOffsets()`; hidden axes)
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [Axes and M584](../firmware-behaviour.md#axes-and-m584)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset) (order dependency)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()` looks at visible axes only)
 )md",
 };
 

@@ -39,7 +39,9 @@ G10 P1 U10
 ```
 
 ## References
-- rrf-semantics §2.3, R06, R07; spec-verification §1 (GCodes2.cpp `HandleGcode()` case 10)
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset), [G10: retract](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-retract)
+- RepRapFirmware 3.5.3: [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (`HandleGcode()` case 10); [3.4.6 GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.4.6/src/GCodes/GCodes2.cpp) (3.4.x also counts `F`)
 )md",
 };
 

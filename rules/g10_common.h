@@ -12,7 +12,7 @@
 
 namespace rrflint::g10 {
 
-/// The form RRF gives a G10 (rrf-semantics §2.3, spec-verification §1).
+/// The form RRF gives a G10 (docs/firmware-behaviour.md#g10-forms; GCodes2.cpp case 10).
 enum class Form : uint8_t {
   Tool,       // tool offsets/temperatures (L1, or P/R/S/a visible axis letter)
   Workplace,  // L2 / L20
@@ -151,7 +151,7 @@ inline bool is_tool_macro_for(std::string_view sd_path, int n) {
   return b == "tfree" + num || b == "tpre" + num || b == "tpost" + num;
 }
 
-/// RRF's answer to a G10 for a tool that does not exist (spec-verification §3).
+/// RRF's answer to a G10 for a tool that does not exist, by version (docs/firmware-behaviour.md#g10-forms).
 inline std::string invalid_tool_text(Version v, int n) {
   if (v >= Version(3, 4, 0, 0, 0)) return "Invalid tool number";
   if (v >= Version(3, 3, 0, 0, 0)) return fmt::format("Tool {} not found", n);

@@ -43,7 +43,9 @@ The fix appends ` Z0` right after the last parameter, before any comment. Z is 0
 keeps its meaning: safe.
 
 ## References
-- rrf-semantics §2.2, §2.3 (Tool.cpp `Tool::Create()`, GCodes.cpp `SetOrReportOffsets()`)
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset)
+- RepRapFirmware 3.5.3: [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`Tool::Create()` starts every offset at 0), [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()`)
 )md",
 };
 

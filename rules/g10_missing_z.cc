@@ -58,7 +58,9 @@ visible, so it is safe. There is no fix for a Z loaded from config-override.g or
 that value into config.g would freeze it.
 
 ## References
-- rrf-semantics §2.3, §2.8; spec-verification "RRF306 g10-missing-z" (GCodes.cpp `SetOrReportOffsets()`)
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [Saved settings: M500, M501, M502](../firmware-behaviour.md#saved-settings-m500-m501-m502)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()`: axes not named keep their offsets)
 )md",
 };
 

@@ -40,8 +40,9 @@ G10 P0 X0 Y0 Z0
 ```
 
 ## References
-- rrf-semantics §2.3, §2.6; spec-verification §3 (GCodes.cpp `GetSpecifiedOrCurrentTool()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset), [M568: set tool settings](https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-set-tool-settings)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`GetSpecifiedOrCurrentTool()`)
 )md",
 };
 

@@ -65,8 +65,9 @@ G10 P1 X18 Y0 Z0
 On a real tool changer, declare it with `--tool-changer` (or `machine.tool-changer = true`).
 
 ## References
-- rrf-semantics §2.4, §2.7; spec-verification "RRF305 g10-nonzero-z"
-- Duet docs, G10: "you want explicitly to set Z0.0"
+- rrflint: [Tool offsets and axis mapping](../firmware-behaviour.md#tool-offsets-and-axis-mapping), [T tool selection](../firmware-behaviour.md#t-tool-selection)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset) ("you want explicitly to set Z0.0")
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ToolOffsetTransform()`)
 )md",
 };
 

@@ -47,8 +47,10 @@ When the map has exactly one axis and the line has no offset for it yet, the fix
 `U-0.4`). It is unsafe: the offset then takes effect and moves the nozzle.
 
 ## References
-- rrf-semantics §2.4, R04; spec-verification §5 (GCodes.cpp `ToolOffsetTransform()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes (G10, M563)
+- rrflint: [Tool offsets and axis mapping](../firmware-behaviour.md#tool-offsets-and-axis-mapping)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset) (offsets apply after axis mapping), [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- Duet3D [IDEX configuration](https://docs.duet3d.com/User_manual/Machine_configuration/Configuration_IDEX)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ToolOffsetTransform()`)
 )md",
 };
 

@@ -37,8 +37,9 @@ G10 P0 X0 Y0 Z0
 ```
 
 ## References
-- rrf-semantics §2.3 (GCodes.cpp `SetOrReportOffsets()`: with only P the tool is reported)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()`: with only P the tool is reported)
 )md",
 };
 

@@ -51,8 +51,9 @@ safe. It is offered only when the `G10` is alone on its line, and for a `G10` wi
 (3.3's `M568` requires `P`).
 
 ## References
-- rrf-semantics §2.3, §2.6; user-pain P22 (GCodes.cpp `SetOrReportOffsets()`, GCodes2.cpp case 568)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-tool-settings
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
+- Duet3D G-code dictionary: [G10: tool temperature setting](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-tool-temperature-setting), [M568: set tool settings](https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-set-tool-settings)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()`), [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (case 568)
 )md",
 };
 

@@ -48,9 +48,9 @@ M568 P0 R150 S290
 ```
 
 ## References
-- rrf-semantics §2.3, R09; spec-verification §8 (Tool.cpp `SetToolHeaterActiveOrStandbyTemperature()`,
-  Heater.cpp `GetHighestTemperatureLimit()`, `SetAsToolHeater()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m143-maximum-heater-temperature
+- rrflint: [Heaters and their monitors](../firmware-behaviour.md#heaters-and-their-monitors), [G10 forms](../firmware-behaviour.md#g10-forms)
+- Duet3D G-code dictionary: [M143: maximum heater temperature](https://docs.duet3d.com/User_manual/Reference/Gcodes#m143-maximum-heater-temperature), [G10: tool temperature setting](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-tool-temperature-setting)
+- RepRapFirmware 3.5.3: [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`SetToolHeaterActiveOrStandbyTemperature()`), [Heater.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Heating/Heater.cpp) (`GetHighestTemperatureLimit()`, `SetAsToolHeater()`)
 )md",
 };
 

@@ -43,8 +43,9 @@ M568 P0 R150 S210
 ```
 
 ## References
-- rrf-semantics §2.3, R08 (GCodes.cpp `SetOrReportOffsets()`: `if (hCount > 0)`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool), [G10: tool temperature setting](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-tool-temperature-setting)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`SetOrReportOffsets()`: temperatures only when the tool has heaters)
 )md",
 };
 

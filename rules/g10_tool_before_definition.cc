@@ -50,8 +50,9 @@ It is unsafe: the values then take effect, which changes what the machine does (
 them), and anything between the two lines that relied on the tool not existing behaves differently.
 
 ## References
-- rrf-semantics §2.3, §3.2, R01; spec-verification §3 (GCodes.cpp `GetSpecifiedOrCurrentTool()`,
-  `SetOrReportOffsets()`)
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [Other ordering rules](../firmware-behaviour.md#other-ordering-rules)
+- Duet3D G-code dictionary: [G10: tool temperature setting](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-tool-temperature-setting) (order dependency), [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`GetSpecifiedOrCurrentTool()`, `SetOrReportOffsets()`); older texts in [3.3 GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.3/src/GCodes/GCodes.cpp)
 )md",
 };
 

@@ -37,8 +37,9 @@ G10 L2 P1 X0          ; G54
 ```
 
 ## References
-- rrf-semantics §2.3; spec-verification §1 (GCodes2.cpp case 10, GCodes3.cpp `GetSetWorkplaceCoordinates()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset
+- rrflint: [G10 forms](../firmware-behaviour.md#g10-forms)
+- Duet3D G-code dictionary: [G10: set workplace coordinate offset or tool offset](https://docs.duet3d.com/User_manual/Reference/Gcodes#g10-set-workplace-coordinate-offset-or-tool-offset)
+- RepRapFirmware 3.5.3: [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (case 10), [GCodes3.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes3.cpp) (`GetSetWorkplaceCoordinates()`)
 )md",
 };
 

@@ -34,8 +34,10 @@ if !exists(global.maxTemp)
 ```
 
 ## References
-- rrf-semantics §1.5, §2.8 (StringParser.cpp `ProcessGlobalCommand`, GCodes.cpp abort on meta-command errors); R42
-- Duet3D/RepRapFirmware issue 704
+- rrflint: [Meta commands](../firmware-behaviour.md#meta-commands), [Errors and aborts](../firmware-behaviour.md#errors-and-aborts)
+- Duet3D meta commands: [Global variable declaration](https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands#global-variable-declaration)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`ProcessVarOrGlobalCommand()`), [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (a meta-command error aborts the file)
+- [RepRapFirmware issue 704](https://github.com/Duet3D/RepRapFirmware/issues/704)
 )md",
 };
 

@@ -41,8 +41,9 @@ M563 P0 D0 H1
 ```
 
 ## References
-- rrf-semantics §2.2, §2.10; spec-verification §8 (Tool.cpp `Create`, Heat.cpp `SetAsToolHeater`,
-  Heater.cpp `SetAsToolHeater`/`SetAsBedOrChamberHeater`, `GetHighestTemperatureLimit`); R21, R34
+- rrflint: [Heaters and their monitors](../firmware-behaviour.md#heaters-and-their-monitors), [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [M950: create heater, fan, …](https://docs.duet3d.com/User_manual/Reference/Gcodes#m950-create-heater-fan-spindle-led-strip-or-gpioservo-pin), [M143: maximum heater temperature](https://docs.duet3d.com/User_manual/Reference/Gcodes#m143-maximum-heater-temperature), [M140](https://docs.duet3d.com/User_manual/Reference/Gcodes#m140-set-bed-temperature-fast-or-configure-bed-heater)
+- RepRapFirmware 3.5.3: [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`Tool::Create()`), [Heat.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Heating/Heat.cpp) (`SetAsToolHeater()`), [Heater.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Heating/Heater.cpp) (`SetAsToolHeater()`, `SetAsBedOrChamberHeater()`, `GetHighestTemperatureLimit()`)
 )md",
 };
 

@@ -35,6 +35,7 @@ M291 P"Bed at 60 C" S1
 ```
 
 ## References
+- rrflint: [Strings](../firmware-behaviour.md#strings)
 - https://github.com/Duet3D/RepRapFirmware/blob/3.6-dev/src/GCodes/GCodeBuffer/StringParser.cpp
   (`InternalGetQuotedString()` copies each byte of a string as it is)
 - https://docs.duet3d.com/User_manual/Reference/Gcodes (strings and encodings)

@@ -32,8 +32,9 @@ Shorten the line, or split it: put a long message in a `var` built in pieces, or
 commands where the command allows it.
 
 ## References
-- rrf-semantics §1.1, spec-verification §12g (`MaxGCodeLength`, Configuration.h; StringParser.cpp
-  `CheckMetaCommand()`)
+- rrflint: [Lines and line endings](../firmware-behaviour.md#lines-and-line-endings), [Errors and aborts](../firmware-behaviour.md#errors-and-aborts)
+- Duet3D G-code dictionary: [Command Length](https://docs.duet3d.com/User_manual/Reference/Gcodes#command-length)
+- RepRapFirmware 3.5.3: [Configuration.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Config/Configuration.h) (`MaxGCodeLength`), [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`CheckMetaCommand()`); [3.3 Configuration.h](https://github.com/Duet3D/RepRapFirmware/blob/3.3/src/Configuration.h) (`GCODE_LENGTH`)
 )md",
 };
 

@@ -40,9 +40,9 @@ M584 'f4
 ```
 
 ## References
-- rrf-semantics §1.8, R29 (StringParser.cpp `FindParameters()`, `Seen()`; RepRapFirmware.h `HighestAxisLetter`;
-  GCodes.h `AllowedAxisLetters`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m584-set-drive-mapping
+- rrflint: [Parameters](../firmware-behaviour.md#parameters)
+- Duet3D G-code dictionary: [M584: set drive mapping](https://docs.duet3d.com/User_manual/Reference/Gcodes#m584-set-drive-mapping) (lowercase axis letters)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`FindParameters()`, `Seen()`), [RepRapFirmware.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/RepRapFirmware.h) (`HighestAxisLetter`), [GCodes.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.h) (`AllowedAxisLetters`)
 )md",
 };
 

@@ -40,8 +40,9 @@ G10 P0 R150 S210
 ```
 
 ## References
-- rrf-semantics §2.6, R22; spec-verification §14 ([S322] GCodes2.cpp case 568: "The M568 command is no longer needed")
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-tool-settings
+- rrflint: [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
+- Duet3D G-code dictionary: [M568: set tool settings](https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-set-tool-settings)
+- RepRapFirmware: [3.2.2 GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.2.2/src/GCodes/GCodes2.cpp) (case 568: "The M568 command is no longer needed"), [3.3 GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.3/src/GCodes/GCodes2.cpp) (case 568 sets temperatures)
 )md",
 };
 

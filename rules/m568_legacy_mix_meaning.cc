@@ -39,8 +39,9 @@ M567 P2 E0.5:0.5
 ```
 
 ## References
-- rrf-semantics §2.6; user-pain P23 ([S205]/1.18.2 GCodes2.cpp case 568 "Turn on/off automatic tool mixing")
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-tool-settings
+- rrflint: [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
+- Duet3D G-code dictionary: [M568: set tool settings](https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-set-tool-settings), [M568: turn off/on tool mix ratios (deprecated)](https://docs.duet3d.com/User_manual/Reference/Gcodes#m568-turn-offon-tool-mix-ratios-deprecated)
+- RepRapFirmware: [2.05.1 GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/2.05.1/src/GCodes/GCodes2.cpp) (case 568, the old mixing switch)
 )md",
 };
 

@@ -37,8 +37,9 @@ M501    ; load the offsets measured by a probing macro and saved with M500
 ```
 
 ## References
-- rrf-semantics §2.5, R14; spec-verification §15 (GCodes6.cpp `ProbeTool()`, `FindAxisLetter()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m585-probe-tool
+- rrflint: [M585 tool probing](../firmware-behaviour.md#m585-tool-probing)
+- Duet3D G-code dictionary: [M585: probe tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m585-probe-tool)
+- RepRapFirmware 3.5.3: [GCodes6.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes6.cpp) (`ProbeTool()`, `FindAxisLetter()`)
 )md",
 };
 

@@ -33,7 +33,9 @@ M98 P"config.g"
 Call each macro from one place only, or guard recursive calls with a condition that ends them.
 
 ## References
-- rrf-semantics §2.9 (GCodes.cpp `Push()`, `MaxStackDepth`); R53
+- rrflint: [M98 and macros](../firmware-behaviour.md#m98-and-macros)
+- Duet3D G-code dictionary: [M98: call macro/subprogram](https://docs.duet3d.com/User_manual/Reference/Gcodes#m98-call-macrosubprogram)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`Push()`), [Configuration.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Config/Configuration.h) (`MaxStackDepth`)
 )md",
 };
 

@@ -40,7 +40,9 @@ M564 H0
 Flatten the macro chain: call the leaf macros from one level.
 
 ## References
-- rrf-semantics §2.9 (GCodes.cpp:1814-1823, Configuration.h `MaxStackDepth`); R53
+- rrflint: [M98 and macros](../firmware-behaviour.md#m98-and-macros), [Errors and aborts](../firmware-behaviour.md#errors-and-aborts)
+- Duet3D G-code dictionary: [M98: call macro/subprogram](https://docs.duet3d.com/User_manual/Reference/Gcodes#m98-call-macrosubprogram)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`Push()`: stack overflow), [Configuration.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Config/Configuration.h) (`MaxStackDepth` and its history)
 )md",
 };
 

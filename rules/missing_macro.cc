@@ -35,7 +35,9 @@ M98 P"0:/macros/levels.g"
 ```
 
 ## References
-- rrf-semantics §2.9 (GCodes2.cpp M98, MassStorage.cpp `CombineName`); R41
+- rrflint: [M98 and macros](../firmware-behaviour.md#m98-and-macros)
+- Duet3D G-code dictionary: [M98: call macro/subprogram](https://docs.duet3d.com/User_manual/Reference/Gcodes#m98-call-macrosubprogram), [Filenames and Paths](https://docs.duet3d.com/User_manual/Reference/Gcodes#filenames-and-paths)
+- RepRapFirmware 3.5.3: [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (case 98), [MassStorage.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Storage/MassStorage.cpp) (`CombineName()`)
 )md",
 };
 

@@ -39,9 +39,9 @@ if !move.axes[0].homed
 ```
 
 ## References
-- rrf-semantics §1.2, R45 (StringParser.cpp `Put()` tab rule, `CheckMetaCommand()`,
-  `CheckForMixedSpacesAndTabs()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands (blocks and indentation)
+- rrflint: [Indentation and blocks](../firmware-behaviour.md#indentation-and-blocks)
+- Duet3D meta commands: [Blocks and indentation](https://docs.duet3d.com/User_manual/Reference/Gcode_meta_commands#blocks-and-indentation)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()` tab rule, `CheckMetaCommand()`, `CheckForMixedSpacesAndTabs()`)
 )md",
 };
 

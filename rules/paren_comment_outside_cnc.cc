@@ -43,9 +43,10 @@ When the parentheses end the line and the line has no `;` comment, the fix turns
 is unsafe: it changes what the standalone firmware reads, to what the author meant.
 
 ## References
-- rrf-semantics §1.4, §1.13, R50 (StringParser.cpp `Put()`, the '(' case tests the machine type; DSF
-  ParserAsync.cs)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes (comments)
+- rrflint: [Comments](../firmware-behaviour.md#comments), [The SBC parser](../firmware-behaviour.md#the-sbc-parser)
+- Duet3D G-code dictionary: [Comments](https://docs.duet3d.com/User_manual/Reference/Gcodes#comments), [M453](https://docs.duet3d.com/User_manual/Reference/Gcodes#m453-select-cnc-device-mode)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()`: the `(` case tests the machine type)
+- [DSF ParserAsync.cs](https://github.com/Duet3D/DuetSoftwareFramework/blob/v3.5.3/src/DuetAPI/Commands/Code/ParserAsync.cs)
 )md",
 };
 

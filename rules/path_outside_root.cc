@@ -30,7 +30,9 @@ M98 P"0:/macros/park.g"
 ```
 
 ## References
-- rrf-semantics §2.9 (MassStorage.cpp `CombineName`)
+- rrflint: [M98 and macros](../firmware-behaviour.md#m98-and-macros)
+- Duet3D G-code dictionary: [Filenames and Paths](https://docs.duet3d.com/User_manual/Reference/Gcodes#filenames-and-paths)
+- RepRapFirmware 3.5.3: [MassStorage.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Storage/MassStorage.cpp) (`CombineName()`)
 )md",
 };
 

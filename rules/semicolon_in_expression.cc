@@ -37,8 +37,8 @@ echo {"probe " ^ "done"}
 ```
 
 ## References
-- rrf-semantics §1.4, §1.11, R50; spec-verification §12d (StringParser.cpp `Put()`, the ';' case does not test
-  the brace count)
+- rrflint: [Comments](../firmware-behaviour.md#comments), [Expressions](../firmware-behaviour.md#expressions)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()`: the `;` case does not test the brace count)
 )md",
 };
 

@@ -47,7 +47,8 @@ echo "probe value", sensors.probes[0].value[0]
 ```
 
 ## References
-- rrf-semantics §1 (StringParser.cpp: `Put()`, `CheckMetaCommand()`, `ProcessConditionalGCode()`)
+- rrflint: [Meta commands](../firmware-behaviour.md#meta-commands), [Expressions](../firmware-behaviour.md#expressions), [Errors and aborts](../firmware-behaviour.md#errors-and-aborts)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`Put()`, `CheckMetaCommand()`, `ProcessConditionalGCode()`)
 - https://github.com/Duet3D/RepRapFirmware/blob/3.6-dev/src/GCodes/GCodeBuffer/ExpressionParser.cpp
   (`ParseInternal()`, `ParseExpectKet()`, `CheckForExtraCharacters()`)
 - https://github.com/Duet3D/RepRapFirmware/blob/3.6-dev/src/GCodes/GCodeBuffer/StringParser.cpp

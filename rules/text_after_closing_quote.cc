@@ -40,6 +40,7 @@ M291 P"Press ""Cancel"" to abort" S3
 ```
 
 ## References
+- rrflint: [Strings](../firmware-behaviour.md#strings)
 - https://github.com/Duet3D/RepRapFirmware/blob/3.6-dev/src/GCodes/GCodeBuffer/StringParser.cpp
   (`FindParameters()` and `Seen()` toggle on each `"`; `InternalGetQuotedString()` ends the string at a `"` not
   followed by another)

@@ -11,7 +11,7 @@
 
 namespace rrflint::tools {
 
-/// G10's form as RRF dispatches it (rrf-semantics §2.3, spec-verification §1).
+/// G10's form as RRF dispatches it (docs/firmware-behaviour.md#g10-forms; GCodes2.cpp case 10).
 enum class G10Form : uint8_t { Tool, Workplace, Retraction, BadL, Unknown };
 
 /// With `s`, visible axis letters count towards the tool form; without it, only L, P, R and S decide, and a

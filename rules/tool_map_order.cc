@@ -47,8 +47,9 @@ M563 P1 D1 X3
 ```
 
 ## References
-- rrf-semantics §2.1, §2.2, R23b (GCodes3.cpp `DoDriveMapping()`: a new axis gets index `numTotalAxes`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [Axes and M584](../firmware-behaviour.md#axes-and-m584), [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool), [M584: set drive mapping](https://docs.duet3d.com/User_manual/Reference/Gcodes#m584-set-drive-mapping)
+- RepRapFirmware 3.5.3: [GCodes3.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes3.cpp) (`DoDriveMapping()`: a new axis gets the next index)
 )md",
 };
 

@@ -39,8 +39,9 @@ M563 P2 D1 X0:3
 ```
 
 ## References
-- rrf-semantics §2.2, R20; spec-verification §4 (GCodes.cpp `ManageTool()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ManageTool()`)
 )md",
 };
 

@@ -34,8 +34,9 @@ M563 P0 D0 S"Hotend"
 ```
 
 ## References
-- rrf-semantics §2.2, R19; spec-verification §16 (GCodes.cpp `ManageTool()`: `GetLimitedUIValue('P', MaxTools)`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ManageTool()`), [Configuration.h](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Config/Configuration.h) (`MaxTools`)
 )md",
 };
 

@@ -47,8 +47,9 @@ G10 P0 X10 Y5 Z0
 ```
 
 ## References
-- rrf-semantics §2.2, R02; spec-verification §6 (GCodes.cpp `ManageTool()`, Tool.cpp `DeleteTool()`, `Create()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [M563 tools](../firmware-behaviour.md#m563-tools)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ManageTool()`), [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`Tool::DeleteTool()`, `Tool::Create()`)
 )md",
 };
 
@@ -58,7 +59,7 @@ bool defining(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
-/// Would RRF reject this M563 before deleting the old tool (overlapping maps, spec-verification §4)?
+/// Would RRF reject this M563 before deleting the old tool (overlapping maps, docs/firmware-behaviour.md#m563-tools)?
 bool rejected_early(const ParsedFile& pf, const Command& c, const MachineState& s) {
   const auto x = tools::tool_map(pf, c, s, 'X'), y = tools::tool_map(pf, c, s, 'Y');
   const auto z = tools::has_z_map(s.firmware) ? tools::tool_map(pf, c, s, 'Z') : tools::ToolMap{'Z', false, true, 0};

@@ -54,9 +54,9 @@ G1 Y250 F6000
 ```
 
 ## References
-- rrf-semantics §2.7, R15; spec-verification §13 (GCodes4.cpp tool-change states: "2020-04-29: run … even if
-  not all axes have been homed"; Tool.cpp `HeatersToActiveOrStandby()`; Heat.cpp `TemperatureSoLowDontCare`)
-- https://docs.duet3d.com/User_manual/Tuning/Tool_changing
+- rrflint: [T tool selection](../firmware-behaviour.md#t-tool-selection)
+- Duet3D [Tool changing](https://docs.duet3d.com/User_manual/Tuning/Tool_changing#selecting-tool-in-configg), [T: select tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#t-select-tool)
+- RepRapFirmware 3.5.3: [GCodes4.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes4.cpp) (tool-change states, run even when not homed), [Tool.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Tools/Tool.cpp) (`HeatersToActiveOrStandby()`), [Heat.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Heating/Heat.cpp) (`TemperatureSoLowDontCare`)
 )md",
 };
 

@@ -48,9 +48,9 @@ T0 P0
 ```
 
 ## References
-- rrf-semantics §2.2, §2.7, §3.2, R16, R23; spec-verification §3, §13 (GCodes.cpp
-  `GetSpecifiedOrCurrentTool()`, GCodes2.cpp cases 207/567/568, RawMove.cpp `SelectTool()`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool
+- rrflint: [Other ordering rules](../firmware-behaviour.md#other-ordering-rules), [T tool selection](../firmware-behaviour.md#t-tool-selection)
+- Duet3D G-code dictionary: [M563: define or remove a tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#m563-define-or-remove-a-tool), [T: select tool](https://docs.duet3d.com/User_manual/Reference/Gcodes#t-select-tool)
+- RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`GetSpecifiedOrCurrentTool()`), [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (cases 207, 567, 568), [RawMove.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/Movement/RawMove.cpp) (`SelectTool()`)
 )md",
 };
 

@@ -34,8 +34,9 @@ M572 D0 S0.05   ; pressure advance
 ```
 
 ## References
-- rrf-semantics §1.6 (GCodes2.cpp `TryMacroFile()`, `HandleResult`)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes
+- rrflint: [Command words](../firmware-behaviour.md#command-words)
+- Duet3D G-code dictionary: [Custom GCodes](https://docs.duet3d.com/User_manual/Reference/Gcodes#custom-gcodes), [GCodes not implemented](https://docs.duet3d.com/User_manual/Reference/Gcodes#gcodes-not-implemented)
+- RepRapFirmware 3.5.3: [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (`TryMacroFile()`, `HandleResult()`)
 )md",
 };
 

@@ -51,9 +51,9 @@ unsafe: rrflint takes the text up to the next blank (for `M98`, the rest of the 
 that was meant.
 
 ## References
-- rrf-semantics §1.10, R40 (StringParser.cpp `GetQuotedString()`, GCodeBuffer.cpp `GetReducedString()`;
-  GCodes2.cpp case 98 uses `GetQuotedString` from 3.5.0-rc.1)
-- https://docs.duet3d.com/User_manual/Reference/Gcodes
+- rrflint: [Strings](../firmware-behaviour.md#strings)
+- Duet3D G-code dictionary: [Quoted strings](https://docs.duet3d.com/User_manual/Reference/Gcodes#quoted-strings), [M98: call macro/subprogram](https://docs.duet3d.com/User_manual/Reference/Gcodes#m98-call-macrosubprogram)
+- RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`GetQuotedString()`), [GCodeBuffer.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/GCodeBuffer.cpp) (`GetReducedString()`), [GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes2.cpp) (case 98); [3.4.6 GCodes2.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.4.6/src/GCodes/GCodes2.cpp) (case 98 still unquoted)
 )md",
 };
 

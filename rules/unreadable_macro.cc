@@ -35,6 +35,7 @@ M98 P"tools.g"   ; sys/tools.g was saved as UTF-16
 Save the macro as plain text (UTF-8 or ASCII) and make it readable.
 
 ## References
+- rrflint: [M98 and macros](../firmware-behaviour.md#m98-and-macros)
 - [M98: Call macro/subprogram](https://docs.duet3d.com/User_manual/Reference/Gcodes#m98-call-macrosubprogram)
 )md",
 };

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "cli/cli.h"
 #include "tests/cli_util.h"
 #include "lint/render/render.h"
 #include "lint/render/rule_docs.h"
@@ -28,6 +29,29 @@ const std::string kConfig =
     "M98 P\"/macros/park.g\"\n";
 
 bool git_available() { return std::system("git --version >/dev/null 2>&1") == 0; }
+
+// The page a link points at by default. The tests run from the build tree, so that is the source tree's
+// docs/rules/ (cli/docs_url.cc), whatever is installed.
+std::string docs_link(const std::string& name) {
+  const std::string base = rrflint::cli::default_docs_base();
+  CHECK(base == rrflint::cli::file_url(fs::path(RRFLINT_SOURCE_DIR) / "docs/rules"));
+  return base + name + ".md";
+}
+
+// The file behind a file:// URL (percent-decoded).
+fs::path file_of_url(const std::string& url) {
+  REQUIRE(url.starts_with("file:///"));
+  std::string path;
+  for (size_t i = 7; i < url.size(); ++i) {
+    if (url[i] == '%' && i + 2 < url.size()) {
+      path += static_cast<char>(std::stoi(url.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      path += url[i];
+    }
+  }
+  return path;
+}
 
 std::vector<std::string> lines_of(const std::string& s) {
   std::vector<std::string> out;
@@ -49,7 +73,7 @@ TEST_CASE("cli: text output: carets, notes with their own snippet, fix preview, 
   CHECK(contains(o.out, "p/sys/config.g:4:7: info RRF900 unused-suppression:"));
   CHECK(contains(o.out, "  help: remove the suppression comment (--fix)\n 4 + G1 X0\n"));
   CHECK(contains(o.out, "0 errors, 1 warning, 1 info in 1 file (1 fixable with --fix)"));
-  CHECK(contains(o.out, "  RRF101 unknown-command: https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md"));
+  CHECK(contains(o.out, "  RRF101 unknown-command: " + docs_link("unknown-command") + "\n"));
 }
 
 TEST_CASE("text: a note in another file has that file's name and snippet; carets cover the exact range", "[cli]") {
@@ -70,6 +94,7 @@ TEST_CASE("text: a note in another file has that file's name and snippet; carets
   d.fix = f;
   RenderOptions o;
   o.files_checked = 2;
+  o.docs_base = "https://example.org/rrflint/rules";  // a '/' is added between the base and the name
   std::ostringstream os;
   render_text(os, sm, {d}, o);
   CHECK(os.str() ==
@@ -84,7 +109,7 @@ TEST_CASE("text: a note in another file has that file's name and snippet; carets
         "\n"
         "0 errors, 1 warning, 0 infos in 1 file (1 fixable with --fix --unsafe-fixes)\n"
         "  RRF326 tool-select-runs-macros-at-boot: "
-        "https://github.com/rrflint/rrflint/blob/main/docs/rules/tool-select-runs-macros-at-boot.md\n");
+        "https://example.org/rrflint/rules/tool-select-runs-macros-at-boot.md\n");
 }
 
 TEST_CASE("cli: colours follow --color, FORCE_COLOR, NO_COLOR and TERM=dumb", "[cli]") {
@@ -132,7 +157,8 @@ TEST_CASE("cli: concise, json, json-lines and -o", "[cli]") {
   json doc = json::parse(o.out);
   CHECK(doc["version"] == 1);
   CHECK(doc["diagnostics"].size() == 2);
-  CHECK(doc["diagnostics"][0]["url"] == "https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md");
+  CHECK(doc["diagnostics"][0]["url"] == docs_link("unknown-command"));
+  CHECK(fs::is_regular_file(file_of_url(doc["diagnostics"][0]["url"])));
   CHECK(doc["summary"]["files_checked"] == 2);
   o = run_rrflint(t.root(), "check p --format json-lines");
   auto ls = lines_of(o.out);
@@ -412,11 +438,12 @@ TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url 
   o = run_rrflint(t.root(), "rule unknown-command --format json");
   json j = json::parse(o.out);
   CHECK(j["code"] == "RRF101");
-  CHECK(j["url"] == "https://github.com/rrflint/rrflint/blob/main/docs/rules/unknown-command.md");
+  CHECK(j["url"] == docs_link("unknown-command"));
   o = run_rrflint(t.root(), "rule --all --format json");
   j = json::parse(o.out);
   for (const json& r : j) {
     CHECK(r.contains("url"));
+    CHECK(r["url"] == docs_link(r["name"]));
     CHECK(std::set<std::string>{"none", "sometimes", "always"}.count(r["fix"]));
   }
   CHECK(run_rrflint(t.root(), "rule no-such-rule").code == 2);
@@ -543,4 +570,63 @@ TEST_CASE("cli: a large file, mapped rather than read, reports what the same byt
   CHECK(mapped.out == piped.out);
   CHECK(contains(mapped.out, "big.g:2:1: warning:"));                       // M9999
   CHECK(contains(mapped.out, "unquoted pin name 'out2'"));                  // the last line
+}
+
+TEST_CASE("docs links: the default from a build opens an existing page for every rule", "[cli][docs]") {
+  TempTree t;  // no config file: the build's default
+  auto o = run_rrflint(t.root(), "rule --all --format json");
+  REQUIRE(o.code == 0);
+  const json rules = json::parse(o.out);
+  REQUIRE(rules.size() == builtin_rules().all().size());
+  for (const json& r : rules) {
+    INFO(r["url"]);
+    const fs::path page = file_of_url(r["url"]);
+    CHECK(fs::is_regular_file(page));
+    CHECK(page.filename() == r["name"].get<std::string>() + ".md");
+  }
+  // The explanation the pages link to ships with them.
+  CHECK(fs::is_regular_file(fs::path(RRFLINT_SOURCE_DIR) / "docs/firmware-behaviour.md"));
+}
+
+TEST_CASE("docs links: docs-url moves every link, and only a web base gets SARIF helpUri", "[cli][docs][sarif]") {
+  TempTree t;
+  fs::create_directories(t / ".git");
+  t.write("p/sys/config.g", kConfig);
+  t.write("p/macros/park.g", "G1 X0\n");
+  // Default (file://): JSON url is the local page, SARIF has no helpUri and no informationUri.
+  json sarif = json::parse(run_rrflint(t.root(), "check p --format sarif").out);
+  const json& driver = sarif["runs"][0]["tool"]["driver"];
+  CHECK_FALSE(driver.contains("informationUri"));
+  for (const json& r : driver["rules"]) CHECK_FALSE(r.contains("helpUri"));
+  auto gh = run_rrflint(t.root(), "check p --format github");
+  CHECK(contains(gh.out, "%0Arrflint rule RRF101\n"));
+  CHECK_FALSE(contains(gh.out, "file://"));
+
+  t.write(".rrflint.toml", "docs-url = \"https://docs.example.org/rrflint/rules/\"\n");
+  json doc = json::parse(run_rrflint(t.root(), "check p --format json").out);
+  CHECK(doc["diagnostics"][0]["url"] == "https://docs.example.org/rrflint/rules/unknown-command.md");
+  sarif = json::parse(run_rrflint(t.root(), "check p --format sarif").out);
+  for (const json& r : sarif["runs"][0]["tool"]["driver"]["rules"])
+    CHECK(r["helpUri"] == "https://docs.example.org/rrflint/rules/" + r["name"].get<std::string>() + ".md");
+  CHECK(contains(run_rrflint(t.root(), "check p").out,
+                 "  RRF101 unknown-command: https://docs.example.org/rrflint/rules/unknown-command.md\n"));
+  gh = run_rrflint(t.root(), "check p --format github");
+  CHECK(contains(gh.out, "%0Ahttps://docs.example.org/rrflint/rules/unknown-command.md\n"));
+  CHECK(json::parse(run_rrflint(t.root(), "rule RRF101 --format json").out)["url"] ==
+        "https://docs.example.org/rrflint/rules/unknown-command.md");
+  CHECK(json::parse(run_rrflint(t.root(), "rule RRF101 --format json --isolated").out)["url"] ==
+        docs_link("unknown-command"));
+
+  // A file:// docs-url (a local mirror): the links follow it, SARIF still leaves helpUri out.
+  t.write(".rrflint.toml", "docs-url = \"file:///opt/rrflint%20docs/rules\"\n");
+  doc = json::parse(run_rrflint(t.root(), "check p --format json").out);
+  CHECK(doc["diagnostics"][0]["url"] == "file:///opt/rrflint%20docs/rules/unknown-command.md");
+  sarif = json::parse(run_rrflint(t.root(), "check p --format sarif").out);
+  for (const json& r : sarif["runs"][0]["tool"]["driver"]["rules"]) CHECK_FALSE(r.contains("helpUri"));
+
+  // A bad docs-url is a config error like any other.
+  t.write(".rrflint.toml", "docs-url = \"docs/rules\"\n");
+  auto bad = run_rrflint(t.root(), "check p");
+  CHECK(bad.code == 2);
+  CHECK(contains(bad.err, ".rrflint.toml:1:12: 'docs-url': "));
 }

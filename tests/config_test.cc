@@ -19,6 +19,7 @@ TEST_CASE("config: every key, with the line it came from", "[config]") {
           "board = \"duet3-6hc\"\n"
           "fail-on = \"error\"\n"
           "exclude = [\"old/**\", \"*.bak.g\"]\n"
+          "docs-url = \"https://example.org/rrflint/rules\"\n"
           "[severity]\n"
           "RRF306 = \"error\"\n"
           "unknown-command = \"info\"\n"
@@ -43,14 +44,16 @@ TEST_CASE("config: every key, with the line it came from", "[config]") {
   CHECK(cfg->exclude[1].glob == "*.bak.g");
   CHECK(*cfg->severity.at("RRF306").value == Severity::Error);
   CHECK(*cfg->severity.at("RRF101").value == Severity::Info);  // by name, stored by code
-  CHECK(cfg->severity.at("RRF101").origin.line == 11);
+  CHECK(cfg->severity.at("RRF101").origin.line == 12);
+  CHECK(*cfg->docs_url.value == "https://example.org/rrflint/rules/");  // a trailing '/' is added
+  CHECK(cfg->docs_url.origin.line == 9);
   CHECK(*cfg->tool_changer.value);
-  CHECK(cfg->tool_changer.origin.line == 13);
+  CHECK(cfg->tool_changer.origin.line == 14);
   REQUIRE(cfg->per_file_ignores.size() == 1);
   const auto& codes = cfg->per_file_ignores[0].codes;
   CHECK(std::find(codes.begin(), codes.end(), "RRF101") != codes.end());
   CHECK(std::find(codes.begin(), codes.end(), "RRF306") != codes.end());  // the RRF3 prefix
-  CHECK(cfg->per_file_ignores[0].origin.line == 15);
+  CHECK(cfg->per_file_ignores[0].origin.line == 16);
 }
 
 TEST_CASE("config: extend inherits, this file's settings come after", "[config]") {
@@ -104,6 +107,19 @@ TEST_CASE("config: errors name the file, line and column", "[config]") {
   CHECK(e.line == 1);
   e = error_of("extend = \"c.toml\"\n");
   CHECK(contains(e.message, "cycle"));
+  // docs-url: a web or file URL of a folder, nothing rrflint cannot append "<name>.md" to.
+  for (const char* bad : {"docs-url = \"docs/rules/\"\n", "docs-url = \"ftp://example.org/\"\n",
+                          "docs-url = \"https:///rules/\"\n", "docs-url = \"file://relative/rules\"\n",
+                          "docs-url = \"https://example.org/a b/\"\n", "docs-url = \"https://example.org/?page=\"\n",
+                          "docs-url = \"\"\n", "docs-url = 3\n"}) {
+    INFO(bad);
+    e = error_of(bad);
+    CHECK(e.line == 1);
+    CHECK(contains(e.message, "docs-url"));
+  }
+  std::string why;
+  CHECK(parse_docs_url("file:///usr/share/doc/rrflint/rules", &why) == "file:///usr/share/doc/rrflint/rules/");
+  CHECK(parse_docs_url("HTTPS://example.org/r/", &why) == "HTTPS://example.org/r/");
 }
 
 TEST_CASE("config: discovery walks up and stops at the repository root", "[config]") {
@@ -214,6 +230,11 @@ TEST_CASE("cli config: `rrflint config` prints settings and where each came from
   CHECK(contains(o.out, "# base.toml:1"));     // fail-on
   CHECK(contains(o.out, "# command line"));    // board
   CHECK(contains(o.out, "# default"));         // tool-changer
+  CHECK(contains(o.out, "docs-url             = \"file://"));  // the build's default
+  t.write("base.toml", "fail-on = \"info\"\ndocs-url = \"https://example.org/r/\"\n");
+  o = run_rrflint(t.root(), "config p");
+  CHECK(contains(o.out, "docs-url             = \"https://example.org/r/\"     # base.toml:2\n"));
+  t.write("base.toml", "fail-on = \"info\"\n");
   CHECK(contains(o.out, "RRF101  unknown-command"));
   CHECK(contains(o.out, "off  warning  # ignore at .rrflint.toml:3"));
   t.write("p/macros/x.g", "G1 X0\n");

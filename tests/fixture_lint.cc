@@ -49,6 +49,7 @@ std::string render_text_report(const LintRun& run, bool unsafe_fixes) {
   });
   RenderOptions ro;
   ro.color = false;
+  ro.docs_base = "docs/rules/";  // the pages in the repository: no machine-dependent path in a snapshot
   ro.unsafe_fixes_enabled = unsafe_fixes;
   ro.files_checked = run.result.machine ? run.result.machine->unit_count() : 0;
   std::ostringstream os;

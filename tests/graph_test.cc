@@ -1,5 +1,5 @@
-// The command graph (rrf-semantics §2.7-§2.9, §4): M98 resolution, M505, M501, runonce.g, tool macros, nesting
-// limits, cycles, maybe flags and entries. A segment is rendered as one line of tokens:
+// The command graph (docs/firmware-behaviour.md#m98-and-macros, #system-files): M98 resolution, M505, M501,
+// runonce.g, tool macros, nesting limits, cycles, maybe flags and entries. A segment is rendered as one line of tokens:
 //
 //   >/sys/a.g(M98)   a file starts, and why it runs      <   the file ends
 //   M98              a command (its word)                 =T0 / =T-1 / =T?   the moment a T selects a tool

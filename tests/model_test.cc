@@ -1,4 +1,4 @@
-// The machine model after boot (rrf-semantics §2, spec-verification §4-§9, §16) and firmware inference.
+// The machine model after boot (docs/firmware-behaviour.md, "Axes and M584" to "Board limits") and firmware inference.
 #include <map>
 #include <memory>
 #include <optional>

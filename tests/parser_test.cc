@@ -1,4 +1,5 @@
-// Parser tests, one TEST_CASE per point of rrf-semantics §1. Lines are rendered compactly (ninja's style):
+// Parser tests, one TEST_CASE per point of docs/firmware-behaviour.md (lines to expressions). Lines are rendered
+// compactly (ninja's style):
 //
 //   cmd: G1 X=10 Y=20 | M400      commands of one line, separated by '|'
 //   cmd@4?~NC: …                  indent 4, conditional (?), in a loop (~), line number (N), checksum (C)
@@ -118,7 +119,7 @@ std::string text_of(const Parsed& p, Span s) { return std::string(p.pf.text(s));
 
 }  // namespace
 
-// §1.1 Line assembly.
+// Line assembly (firmware-behaviour.md#lines-and-line-endings).
 TEST_CASE("parser: lines end at LF, CRLF and lone CR", "[parser]") {
   CHECK(dump("G1 X1\nG1 X2\n") == "cmd: G1 X=1\ncmd: G1 X=2");
   CHECK(dump("G1 X1\r\nG1 X2\r\n") == "cmd: G1 X=1\ncmd: G1 X=2");
@@ -197,7 +198,7 @@ TEST_CASE("parser: axis words alone repeat the last move in CNC and laser mode o
   CHECK(render_line(p.pf, p.pf.lines[4]) == "cmd:");
 }
 
-// §1.2 Indentation.
+// Indentation (firmware-behaviour.md#indentation-and-blocks).
 TEST_CASE("parser: a blank counts 1, a tab moves to the next multiple of 4", "[parser]") {
   auto indent = [](std::string text) { return parse_text(std::move(text)).pf.lines[0].indent; };
   CHECK(indent("G1") == 0);
@@ -217,7 +218,7 @@ TEST_CASE("parser: a blank counts 1, a tab moves to the next multiple of 4", "[p
   CHECK_FALSE(parse_text("if true\n  M83\nif true\n  M82\n").pf.mixed_indentation);
 }
 
-// §1.3 Line numbers and checksums.
+// Line numbers and checksums (firmware-behaviour.md#line-numbers-and-checksums).
 TEST_CASE("parser: N line numbers and * checksums", "[parser]") {
   Parsed p = parse_text("N10 G1 X5*42 ; move\n");
   const Line& l = p.pf.lines[0];
@@ -234,7 +235,7 @@ TEST_CASE("parser: N line numbers and * checksums", "[parser]") {
   CHECK(one("NG1") == "bad");
 }
 
-// §1.4 Comments.
+// Comments (firmware-behaviour.md#comments).
 TEST_CASE("parser: comments", "[parser]") {
   CHECK(dump("; whole line\n  ; indented\n\t; tabbed\n") == "comment\nblank@2\nblank@4");
   Parsed p = parse_text("G1 X5 ; to the left\n");
@@ -267,7 +268,7 @@ TEST_CASE("parser: ( ) comments only in CNC mode, after M453", "[parser]") {
   CHECK(render_line(expr.pf, expr.pf.lines[0]) == "cmd: G1 X={(1+2)*3}");
 }
 
-// §1.6 The command word.
+// The command word (firmware-behaviour.md#command-words).
 TEST_CASE("parser: command words", "[parser]") {
   CHECK(one("g1 x10") == "cmd: G1 X=10");
   CHECK(one("m563 p0 s\"T\"") == "cmd: M563 P=0 S=\"T\"");
@@ -304,7 +305,7 @@ TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[
   CHECK(one("ifx") == "bad");
 }
 
-// §1.7 Several commands on one line.
+// Several commands on one line (firmware-behaviour.md#several-commands-on-one-line).
 TEST_CASE("parser: G and M start a new command, T and 'g do not", "[parser]") {
   CHECK(one("G1 X10 M400") == "cmd: G1 X=10 | M400");
   CHECK(one("G1 X10G1 Y20") == "cmd: G1 X=10 | G1 Y=20");
@@ -321,7 +322,7 @@ TEST_CASE("parser: G and M start a new command, T and 'g do not", "[parser]") {
   CHECK(p.pf.commands[1].line == 0);
 }
 
-// §1.8 Parameters.
+// Parameters (firmware-behaviour.md#parameters).
 TEST_CASE("parser: parameter letters", "[parser]") {
   CHECK(one("G1X10Y20") == "cmd: G1 X=10 Y=20");
   CHECK(one("M584 'a0.5 'B0.6") == "cmd: M584 'a=0.5 'b=0.6");
@@ -349,7 +350,7 @@ TEST_CASE("parser: parameter letters", "[parser]") {
   CHECK(lower.pf.find(lower.pf.commands[0], 'A') == nullptr);
 }
 
-// §1.9 Values.
+// Values (firmware-behaviour.md#numbers-and-lists).
 TEST_CASE("parser: value kinds and spans", "[parser]") {
   CHECK(one("G1 X-3.5 Y+2 Z.5") == "cmd: G1 X=-3.5 Y=+2 Z=.5");
   CHECK(one("M569 P1.2 S0") == "cmd: M569 P=1.2 S=0");
@@ -382,7 +383,7 @@ TEST_CASE("parser: unterminated strings and braces", "[parser]") {
   CHECK(errors("M291 P\"a\" S1").empty());
 }
 
-// §1.5 Meta commands.
+// Meta commands (firmware-behaviour.md#meta-commands).
 TEST_CASE("parser: meta commands", "[parser]") {
   CHECK(one("if move.axes[0].homed") == "meta: if move.axes[0].homed");
   CHECK(one("while iterations < 3") == "meta: while iterations < 3");
@@ -463,7 +464,7 @@ TEST_CASE("parser: the commands inside blocks, as ranges", "[parser]") {
   CHECK(ranges(text, ParseOptions{.threads = 3, .part_bytes = 100}) == serial);
 }
 
-// §1.1 Stored line length.
+// Stored line length (firmware-behaviour.md#lines-and-line-endings).
 TEST_CASE("parser: stored line length", "[parser]") {
   auto stored = [](std::string text, ParseOptions o = {}) { return parse_text(std::move(text), o).pf.lines[0].stored_length; };
   CHECK(stored("G1 X10") == 6);

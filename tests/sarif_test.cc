@@ -55,11 +55,15 @@ struct Sample {
   }
 };
 
-json sarif_of(const Sample& s, const fs::path& base = "/repo", const fs::path& cwd = "/repo") {
+constexpr const char* kWebDocs = "https://docs.example.org/rrflint/rules/";
+
+json sarif_of(const Sample& s, const fs::path& base = "/repo", const fs::path& cwd = "/repo",
+              const std::string& docs_base = kWebDocs) {
   RenderOptions o;
   o.rules = &builtin_rules();
   o.uri_base = base;
   o.cwd = cwd;
+  o.docs_base = docs_base;
   std::ostringstream os;
   render_sarif(os, s.sm, s.diags, o);
   return json::parse(os.str());
@@ -89,7 +93,7 @@ TEST_CASE("sarif: GitHub code scanning's required fields", "[sarif]") {
     CHECK_FALSE(r["fullDescription"]["text"].get<std::string>().empty());
     CHECK_FALSE(r["help"]["text"].get<std::string>().empty());
     CHECK(contains(r["help"]["markdown"].get<std::string>(), "## What it does"));
-    CHECK(r["helpUri"] == rule_url(r["name"].get<std::string>()));
+    CHECK(r["helpUri"] == kWebDocs + r["name"].get<std::string>() + ".md");
     CHECK(std::set<std::string>{"note", "warning", "error"}.count(r["defaultConfiguration"]["level"]));
     CHECK(std::set<std::string>{"recommendation", "warning", "error"}.count(r["properties"]["problem.severity"]));
   }
@@ -226,6 +230,7 @@ TEST_CASE("github: escaping, order, multi-line findings", "[github]") {
   RenderOptions o;
   o.rules = &builtin_rules();
   o.uri_base = o.cwd = "/repo";
+  o.docs_base = kWebDocs;
   std::ostringstream os;
   render_github(os, s.sm, s.diags, o);
   std::vector<std::string> lines;
@@ -235,12 +240,36 @@ TEST_CASE("github: escaping, order, multi-line findings", "[github]") {
   CHECK(lines[0].starts_with(
       "::error file=printer/sys/config.g,line=2,endLine=2,col=1,endColumn=13,title=rrflint RRF301 "
       "g10-tool-before-definition::'G10 P1' names tool 1, which does not exist yet%0Anote: printer/sys/all "
-      "standby.g:1:1: tool 1 is created here%0Ahelp: append 'Z0' (rrflint check --fix)%0Ahttps://"));
+      "standby.g:1:1: tool 1 is created here%0Ahelp: append 'Z0' (rrflint check --fix)%0A"
+      "https://docs.example.org/rrflint/rules/g10-tool-before-definition.md"));
   // Multi-line: no col/endColumn; '%' in the message is escaped.
   CHECK(lines[1].starts_with(
       "::warning file=printer/sys/all standby.g,line=1,endLine=2,title=rrflint RRF101 unknown-command::'M9998' is "
       "not a command: 50%25 of 'odd', really%0A"));
   CHECK(lines[2].starts_with("::notice file=printer/sys/config.g,line=4,endLine=4,col=1,endColumn=6,"));
+  // A local (file://) docs base would not open on github.com: the annotation names the command instead.
+  o.docs_base = "file:///usr/share/doc/rrflint/rules/";
+  std::ostringstream local;
+  render_github(local, s.sm, s.diags, o);
+  CHECK_FALSE(contains(local.str(), "file://"));
+  CHECK(contains(local.str(), "(rrflint check --fix)%0Arrflint rule RRF301\n"));
+}
+
+TEST_CASE("sarif: helpUri only for a web docs base, and never an informationUri", "[sarif]") {
+  Sample s;
+  for (const std::string base : {"file:///usr/share/doc/rrflint/rules/", ""}) {
+    INFO(base);
+    json doc = sarif_of(s, "/repo", "/repo", base);
+    const json& driver = doc["runs"][0]["tool"]["driver"];
+    CHECK_FALSE(driver.contains("informationUri"));
+    for (const json& r : driver["rules"]) {
+      CHECK_FALSE(r.contains("helpUri"));
+      CHECK(contains(r["help"]["markdown"].get<std::string>(), "## What it does"));  // the page travels inline
+    }
+  }
+  json doc = sarif_of(s, "/repo", "/repo", "http://intranet/rrflint/rules");
+  CHECK(doc["runs"][0]["tool"]["driver"]["rules"][0]["helpUri"].get<std::string>().starts_with("http://intranet/rrflint/rules/"));
+  CHECK_FALSE(doc["runs"][0]["tool"]["driver"].contains("informationUri"));
 }
 
 TEST_CASE("github: property values escape ':' and ','", "[github]") {
@@ -311,6 +340,11 @@ TEST_CASE("json-lines: one object per line, the same objects as json", "[json]")
   size_t n = 0;
   for (std::string line; std::getline(in, line); ++n) CHECK(json::parse(line) == doc["diagnostics"][n]);
   CHECK(n == 3);
-  CHECK(doc["diagnostics"][0]["url"] == rule_url("g10-tool-before-definition"));
+  CHECK(doc["diagnostics"][0]["url"] == "docs/rules/g10-tool-before-definition.md");  // no base: the repository path
+  o.docs_base = kWebDocs;
+  std::ostringstream with_base;
+  render_json(with_base, s.sm, s.diags, o);
+  CHECK(json::parse(with_base.str())["diagnostics"][0]["url"] ==
+        rule_url(kWebDocs, "g10-tool-before-definition"));
   CHECK(doc["diagnostics"][0]["notes"][0]["end_column"] == 6);
 }

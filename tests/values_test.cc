@@ -1,4 +1,4 @@
-// Value reading (rrf-semantics §1.9, spec-verification §12): get_int/get_float/get_string, lists, driver ids.
+// Value reading (docs/firmware-behaviour.md#numbers-and-lists, #strings): get_int/get_float/get_string, lists, driver ids.
 #include <cmath>
 #include <memory>
 #include <string>

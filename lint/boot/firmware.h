@@ -1,4 +1,5 @@
-// Firmware target: version, board and the limits that depend on them (rrf-semantics §2.1, §5).
+// Firmware target: version, board and the limits that depend on them (docs/firmware-behaviour.md#firmware-versions,
+// #board-limits).
 #pragma once
 
 #include <cstdint>
@@ -45,7 +46,7 @@ struct BoardLimits {
   int max_extruders;
   int max_axes_plus_extruders;
 };
-/// MaxAxes / MaxExtruders / MaxAxesPlusExtruders (spec-verification §16). Unknown board: the most permissive.
+/// MaxAxes / MaxExtruders / MaxAxesPlusExtruders (docs/firmware-behaviour.md#board-limits). Unknown board: the most permissive.
 BoardLimits board_limits(Board b, Version v);
 
 /// Stored line limit: 255 from 3.4, 200 for 3.1–3.3, 160 before.

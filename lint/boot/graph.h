@@ -3,7 +3,7 @@
 // config.g runs first, with each M98 file inlined at its call site (relative to /sys or the M505 folder),
 // config-override.g at the M501, the tool-change macros that a `T` runs, then runonce.g. Every other .g
 // file under /sys, /macros and /filaments becomes an entry of its own that starts from the end-of-boot
-// machine state (rrf-semantics §2.9, §4).
+// machine state (docs/firmware-behaviour.md#m98-and-macros, #system-files).
 #pragma once
 
 #include <algorithm>

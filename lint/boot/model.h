@@ -46,7 +46,8 @@ struct Heater {
   int sensor = -1;
   bool maybe = false;
   bool monitor_installed = false;  // default monitor (tool/bed defaults) or a user M143
-  double limit = 2000;             // highest over-temperature limit; 2000 with no monitor (spec-verification §8)
+  double limit = 2000;             // highest over-temperature limit; 2000 with no monitor
+                                   // (docs/firmware-behaviour.md#heaters-and-their-monitors)
   NodeId monitor_origin = kNoNode;
   bool user_monitor = false;
   bool model_set = false;  // M307 seen
@@ -150,7 +151,7 @@ struct MachineState {
   std::string axis_letters(uint32_t bits) const;  // "U", "X+U"
 };
 
-/// Letters of axes in RRF's creation order for one M584 (rrf-semantics §2.1).
+/// Letters of axes in RRF's creation order for one M584 (docs/firmware-behaviour.md#axes-and-m584).
 std::string_view allowed_axis_letters();
 
 /// The forward pass. `step` applies one graph node to the state.

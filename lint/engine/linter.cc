@@ -82,7 +82,7 @@ class NodeDispatch {
         continue;
       }
       Triggers t;
-      parse_triggers(r->on, t);  // a malformed list is a test failure (tests/rules_test.cc), not a crash
+      parse_triggers(r->on, t);  // a malformed list is a test failure (tests/fixtures_test.cc), not a crash
       if (t.any_t) t_.push_back(r);
       for (auto [letter, n] : t.codes) {
         auto& table = letter == 'G' ? g_ : m_;

@@ -1,7 +1,7 @@
 // Suppression comments: `; rrflint: disable=…` and friends, read from each file's comments, applied to the
 // diagnostics of a run, and checked themselves (RRF900 unused-suppression, RRF901 unknown-rule-in-suppression).
 //
-// Syntax (rules.md, last section). Rules are named by code or name, case-insensitively, comma-separated:
+// Syntax (README.md, "Suppressing findings"). Rules are named by code or name, case-insensitively, comma-separated:
 //   G1 X0 ; rrflint: disable=RRF101          a code line: that line only
 //   ; rrflint: disable-next-line=a,b         own line: the next line that holds code
 //   ; rrflint: disable=a  …  ; rrflint: enable=a    own line: a range (to the end of the file without enable)

@@ -32,7 +32,7 @@ M9999 ; rrflint: disable=unknown-command
 ```
 
 ## References
-- rules.md, "Suppression comment syntax"
+- rrflint README, "Suppressing findings" (the comment syntax)
 - `lint/engine/suppress.cc`
 )md",
 };

@@ -42,7 +42,8 @@ list. A suppression of `unused-suppression` itself is judged last, after it had 
 other findings of this rule.
 
 ## References
-- rules.md, "Suppression comment syntax"; ruff's `RUF100` (unused-noqa)
+- rrflint README, "Suppressing findings" (the comment syntax)
+- ruff's [`RUF100`](https://docs.astral.sh/ruff/rules/unused-noqa/) (unused-noqa)
 - `lint/engine/suppress.cc`
 )md",
 };

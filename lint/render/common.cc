@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cctype>
 #include <set>
 
 #include "lint/render/render.h"
@@ -54,7 +55,20 @@ std::string sanitize(std::string_view s) {
   return out;
 }
 
-std::string rule_url(std::string_view name) { return std::string(kDocsBase) + std::string(name) + ".md"; }
+std::string rule_url(std::string_view docs_base, std::string_view name) {
+  std::string url = docs_base.empty() ? std::string("docs/rules/") : std::string(docs_base);
+  if (!url.ends_with('/')) url += '/';
+  return url + std::string(name) + ".md";
+}
+
+bool is_web_url(std::string_view url) {
+  auto lower = [&](size_t n) {
+    std::string s(url.substr(0, n));
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  return lower(7) == "http://" || lower(8) == "https://";
+}
 
 std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix) {
   if (fix.edits.empty() || fix.edits.front().loc.file == kNoFile) return std::nullopt;

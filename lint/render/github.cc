@@ -1,4 +1,4 @@
-// `github`: GitHub Actions workflow commands, one annotation per finding (linter-ux §1.10):
+// `github`: GitHub Actions workflow commands, one annotation per finding:
 //   ::error file=sys/config.g,line=12,endLine=12,col=1,endColumn=5,title=rrflint RRF101 unknown-command::message
 // Message data escapes % CR LF; property values also ':' and ','. `col`/`endColumn` are left out when a
 // finding spans lines (GitHub rejects that combination). Errors come first. GitHub shows at most 10 errors,
@@ -112,7 +112,9 @@ void render_github(std::ostream& os, const SourceManager& sm, const std::vector<
         body += fmt::format("\nhelp: {} ({})", sanitize(d.fix->title),
                             d.fix->applicability == Applicability::Safe ? "rrflint check --fix"
                                                                         : "rrflint check --fix --unsafe-fixes");
-      body += fmt::format("\n{}", rule_url(d.name));
+      // The annotation is read on github.com: a file:// page of the runner would not open there.
+      if (is_web_url(o.docs_base)) body += fmt::format("\n{}", rule_url(o.docs_base, d.name));
+      else body += fmt::format("\nrrflint rule {}", d.code);
       os << "::" << command(d.severity) << " " << props << "::" << escape_data(body) << "\n";
     }
   }

@@ -7,7 +7,7 @@
 
 namespace rrflint {
 
-nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d) {
+nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std::string_view docs_base) {
   using nlohmann::json;
   const Range r = range_of(sm, d.loc);
   json j;
@@ -20,7 +20,7 @@ nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d) {
   j["column"] = r.start.column;
   j["end_line"] = r.end.line;
   j["end_column"] = r.end.column;
-  j["url"] = rule_url(d.name);
+  j["url"] = rule_url(docs_base, d.name);
   json notes = json::array();
   for (const Note& n : d.notes) {
     const Range nr = range_of(sm, n.loc);
@@ -58,7 +58,7 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   json doc;
   doc["version"] = 1;
   json arr = json::array();
-  for (const Diagnostic& d : diags) arr.push_back(diagnostic_json(sm, d));
+  for (const Diagnostic& d : diags) arr.push_back(diagnostic_json(sm, d, o.docs_base));
   doc["diagnostics"] = arr;
   const Counts c = count(diags);
   doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings}, {"infos", c.infos},

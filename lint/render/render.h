@@ -18,9 +18,13 @@
 
 namespace rrflint {
 
-/// Where each rule's page lives: docs/rules/<name>.md in the repository.
-inline constexpr std::string_view kDocsBase = "https://github.com/rrflint/rrflint/blob/main/docs/rules/";
-std::string rule_url(std::string_view name);
+/// A rule's page: `<docs_base><name>.md`. The front end sets the base (the `docs-url` setting, else the default
+/// of the build: the installed docs or the source tree's docs/rules/, see cli/docs_url.cc); an empty base gives
+/// the page's path in the repository, docs/rules/<name>.md.
+std::string rule_url(std::string_view docs_base, std::string_view name);
+/// Is `url` a web address (http:// or https://)? Only those go where a viewer elsewhere follows the link
+/// (SARIF's helpUri, GitHub annotations); a file:// page exists on this machine only.
+bool is_web_url(std::string_view url);
 
 class RuleSet;
 
@@ -30,7 +34,7 @@ struct RenderOptions {
   bool color = false;
   bool show_fix_hint = true;        // the "N fixable with --fix" part of the summary
   bool unsafe_fixes_enabled = false;
-  std::string docs_base = std::string(kDocsBase);
+  std::string docs_base;              // where rule pages live, for rule_url(); ends with '/'
   size_t files_checked = 0;
   size_t fixed = 0;                  // findings fixed by --fix before this report (text summary)
   // SARIF: artifact URIs are relative to `uri_base` (the git top-level, else the working directory); display
@@ -56,8 +60,8 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
 void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
 void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
 void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-/// One diagnostic as the object `json` and `json-lines` print.
-nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d);
+/// One diagnostic as the object `json` and `json-lines` print; its "url" is rule_url(docs_base, name).
+nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std::string_view docs_base);
 
 /// Text with invalid UTF-8 replaced by U+FFFD and control characters escaped, safe for terminals and JSON.
 std::string sanitize(std::string_view s);

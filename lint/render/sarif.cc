@@ -1,5 +1,6 @@
-// `sarif`: SARIF 2.1.0 as GitHub code scanning wants it (linter-ux §1.9): every rule in tool.driver.rules with
-// short and full descriptions, help text and Markdown, helpUri and default level; each result with ruleId,
+// `sarif`: SARIF 2.1.0 as GitHub code scanning wants it: every rule in tool.driver.rules with short and full
+// descriptions, help text and Markdown, helpUri (only when the rule docs have a web home) and default level; no
+// informationUri (rrflint has no public home page, and no link beats a dead one); each result with ruleId,
 // ruleIndex, level, a located message, partialFingerprints.primaryLocationLineHash, notes as relatedLocations
 // and the fix as fixes[]. URIs are relative to the repository's top-level folder (uriBaseId %SRCROOT%), which
 // keeps them stable across checkouts; columns count Unicode code points (columnKind says so).
@@ -126,23 +127,26 @@ std::string_view category_tag(std::string_view code) {
   return "other";
 }
 
-json rule_json(const Rule& r) {
+// helpUri only for a web home of the docs: code scanning opens it in the reader's browser, where a file:// page
+// of the machine that ran rrflint does not exist (help.markdown carries the page either way).
+json rule_json(const Rule& r, std::string_view docs_base) {
   const RuleMeta& m = r.meta;
   const std::string md =
       fmt::format("# {} {}\n\n{}\n{}", m.code, m.name, m.summary, published_docs(m.docs));
-  return {{"id", m.code},
-          {"name", m.name},
-          {"shortDescription", {{"text", m.summary}}},
-          {"fullDescription", {{"text", what_it_does(m)}}},
-          {"help", {{"text", plain_docs(m)}, {"markdown", md}}},
-          {"helpUri", rule_url(m.name)},
-          {"defaultConfiguration", {{"level", sarif_level(m.severity)}, {"enabled", m.default_enabled}}},
-          {"properties",
-           {{"tags", json::array({"rrflint", category_tag(m.code)})},
-            {"precision", "high"},
-            {"problem.severity", m.severity == Severity::Error     ? "error"
-                                 : m.severity == Severity::Warning ? "warning"
-                                                                   : "recommendation"}}}};
+  json j = {{"id", m.code},
+            {"name", m.name},
+            {"shortDescription", {{"text", m.summary}}},
+            {"fullDescription", {{"text", what_it_does(m)}}},
+            {"help", {{"text", plain_docs(m)}, {"markdown", md}}},
+            {"defaultConfiguration", {{"level", sarif_level(m.severity)}, {"enabled", m.default_enabled}}},
+            {"properties",
+             {{"tags", json::array({"rrflint", category_tag(m.code)})},
+              {"precision", "high"},
+              {"problem.severity", m.severity == Severity::Error     ? "error"
+                                   : m.severity == Severity::Warning ? "warning"
+                                                                     : "recommendation"}}}};
+  if (is_web_url(docs_base)) j["helpUri"] = rule_url(docs_base, m.name);
+  return j;
 }
 
 // A stable fingerprint: the rule and the trimmed text of the finding's line, hashed (FNV-1a), plus the
@@ -184,7 +188,7 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
   if (o.rules)
     for (const Rule* r : o.rules->all()) {
       index[r->meta.code] = rules.size();
-      rules.push_back(rule_json(*r));
+      rules.push_back(rule_json(*r, o.docs_base));
     }
 
   json results = json::array();
@@ -240,7 +244,6 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
           {"fullName", "rrflint: a static analyser for RepRapFirmware configuration"},
           {"version", RRFLINT_VERSION},
           {"semanticVersion", RRFLINT_VERSION},
-          {"informationUri", "https://github.com/rrflint/rrflint"},
           {"rules", rules}}}}},
       {"originalUriBaseIds", {{"%SRCROOT%", {{"uri", base_uri}}}}},
       {"columnKind", "unicodeCodePoints"},

@@ -127,7 +127,7 @@ void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Di
   if (c.fixable) summary += fmt::format(" ({} fixable with --fix)", c.fixable);
   else if (c.unsafe_fixable && o.show_fix_hint) summary += fmt::format(" ({} fixable with --fix --unsafe-fixes)", c.unsafe_fixable);
   os << st(summary, "1") << "\n";
-  for (const auto& [code, name] : seen) os << "  " << code << " " << name << ": " << o.docs_base << name << ".md\n";
+  for (const auto& [code, name] : seen) os << "  " << code << " " << name << ": " << rule_url(o.docs_base, name) << "\n";
 }
 
 void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions&) {

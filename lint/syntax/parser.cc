@@ -442,7 +442,7 @@ struct Lexer {
 
 uint32_t Lexer::parse_value(uint32_t p, uint32_t e, Param& param) const {
   // A value runs to the next parameter letter (or G/M command letter) outside quotes and braces.
-  // An E or e straight after a digit is an exponent, not a parameter (rrf-semantics §1.8).
+  // An E or e straight after a digit is an exponent, not a parameter (docs/firmware-behaviour.md#parameters).
   const char* const s = t.data();
   const auto n = static_cast<uint32_t>(t.size());
   const uint32_t vb = skip_blanks(p, e);
@@ -971,7 +971,7 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool
 // The short path for most lines: a line of at most 64 bytes that starts with an upper-case G, M or T after
 // indentation by spaces, and whose code (up to a ';') holds only letters, digits, blanks, '.', '-', '+' and ':' (no blank before a ':').
 // Such a line has no errors, no expression and no string; its bytes are classified 16 at a time into bit masks,
-// and its parameters are the letters that are not an exponent (an E or e after a digit, rrf-semantics §1.8). The
+// and its parameters are the letters that are not an exponent (an E or e after a digit, firmware-behaviour.md#parameters). The
 // records written are those the full path writes (ParseOptions::fast_lines; the tests compare both). Returns false,
 // having written nothing, for any other line.
 bool LineParser::simple_line(uint32_t b, uint32_t e) {
@@ -1290,7 +1290,7 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
 
 // The parameters of `cmd` from `p` (after its word) to the end of the command, counted with their flags, without
 // making a Param: a value runs to the next letter outside quotes and braces, and an E or e after a digit is an
-// exponent (rrf-semantics §1.8). At anything that the lexer reports or decides in a way this scan does not (an
+// exponent (docs/firmware-behaviour.md#parameters). At anything that the lexer reports or decides in a way this scan does not (an
 // unclosed string or expression, a control character in a string, a blank before ':', a `'x` axis, a CNC comment,
 // text before the first letter, a command that takes the rest of the line) it returns false and leaves `cmd` and
 // `p` alone, and lex_params does the work. The tests hold both to the same counts and flags (tests/param_check.h,

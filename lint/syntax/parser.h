@@ -1,4 +1,5 @@
-// The RRF line parser (rrf-semantics §1): bytes -> lines -> commands and parameters, all as spans.
+// The RRF line parser: bytes -> lines -> commands and parameters, all as spans. What RRF does is described in
+// docs/firmware-behaviour.md, sections #lines-and-line-endings to #expressions.
 //
 // One pass per file, no allocation per token. What the pass keeps is small: a 20-byte record per line and per
 // command, decoded into the `Line` and `Command` values below when asked for, and a 4-byte link per command to the

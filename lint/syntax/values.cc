@@ -80,7 +80,7 @@ bool parse_driver(std::string_view s, DriverId& out) {
 
 // Calls f(item) for each item of a list value, as RRF reads them: a value, then on only if the very next
 // character is ':'. Blanks after a ':' are skipped by number parsing; a blank before a ':' ends the list
-// (rrf-semantics §1.9). f returns false to stop.
+// (docs/firmware-behaviour.md#numbers-and-lists). f returns false to stop.
 template <class F>
 void each_list_item(const ParsedFile& pf, const Param& p, F f) {
   std::string_view t = pf.source->text();

@@ -1,4 +1,5 @@
-// Reading parameter values the way RRF reads them (rrf-semantics §1.9), from spans, on demand.
+// Reading parameter values the way RRF reads them (docs/firmware-behaviour.md#numbers-and-lists, #strings), from
+// spans, on demand.
 //
 // A value is Absent (letter not given), Unknown (an expression: `{…}`, `param.X`), Known, or Bad (RRF would
 // reject it). Rules never fire on Unknown values.
