@@ -23,7 +23,6 @@ ALLOWED_FUNCTIONS = {
     "lint/syntax/parser.cc:simple_line": "hot path: the short parse of a plain line (P3)",
     "lint/syntax/parser.cc:parse_logical_line": "hot path: the full parse of one logical line (P3)",
     # Orchestration still to be split (issue: architecture, item 6). Remove each entry when it is split.
-    "lint/engine/linter.cc:lint_machine": "to split: load, forward pass, file-rule schedule, end rules, finish",
     "lint/engine/suppress.cc:apply_suppressions": "to split: per-file ignores, RRF901, RRF900",
     "lint/boot/infer.cc:infer_target": "to split: one function per source of evidence",
     "cli/main.cc:main": "to split: one function per subcommand's set-up",
