@@ -23,9 +23,7 @@ ALLOWED_FUNCTIONS = {
     "lint/syntax/parser.cc:simple_line": "hot path: the short parse of a plain line (P3)",
     "lint/syntax/parser.cc:parse_logical_line": "hot path: the full parse of one logical line (P3)",
     # Orchestration still to be split (issue: architecture, item 6). Remove each entry when it is split.
-    "cli/check.cc:run_job": "to split: lint, fix rounds, report",
     "cli/inputs.cc:plan": "to split: per kind of path",
-    "cli/check.cc:run_check": "to split: jobs, totals, rendering",
     "cli/settings.cc:run_config": "to split: text and JSON output",
     "frontend/config.cc:load": "to split: one function per key group",
     "lint/syntax/parser.cc:parse_commands": "to split with the parser (item 5)",
