@@ -26,7 +26,6 @@ ALLOWED_FUNCTIONS = {
     "cli/settings.cc:run_config": "to split: text and JSON output",
     "frontend/config.cc:load": "to split: one function per key group",
     "lint/syntax/parser.cc:parse_commands": "to split with the parser (item 5)",
-    "lint/render/model_render.cc:render_model_text": "to split: one function per part of the model",
 }
 ALLOWED_FILES = {
     "lint/syntax/parser.cc": "to split at its seams (issue: architecture, item 5)",
