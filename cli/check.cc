@@ -110,22 +110,28 @@ void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Total
     t.lone_hint = true;
 }
 
-// One job: lint (unless linted ahead), then the requested rewrite, then collect what is to be reported.
-bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
-             Totals& t, std::unique_ptr<Prelinted> pre = nullptr) {
-  if (job.excluded) {
-    // Excluded stdin: nothing to report, and --fix hands the text back unchanged (an editor must not lose it).
-    if ((co.fix || co.add_suppressions) && job.stdin_bytes) t.stdout_text = *job.stdin_bytes;
-    return true;
-  }
-  Effective eff;
-  if (pre) eff = std::move(pre->eff);
-  else if (!job_settings(job, settings, co_threads(co), eff)) return false;
-  JobReader reader(job);
+// What the fix rounds of a job changed, by SD path.
+struct FixedTexts {
+  std::map<std::string, std::string> original, current;  // by SD path
+  std::map<std::string, std::string> display;
+  std::map<std::string, size_t> fixed_in;  // fixes applied, by SD path (a fix counts for the file it starts in)
+};
 
-  // Decided once per file: a card's files have many findings each.
-  std::unordered_map<FileId, bool> reportable_memo;
-  auto reportable = [&](const SourceFile& f) {
+// One job once its settings are known: lint (unless linted ahead), then the requested rewrite, then collect what
+// is to be reported.
+struct JobRun {
+  const Job& job;
+  const CheckOptions& co;
+  Settings& settings;
+  GitIgnore& gitignore;
+  SourceManager& sm;
+  Totals& t;
+  const Effective& eff;
+  JobReader reader{job};
+  std::unordered_map<FileId, bool> reportable_memo;  // decided once per file: a card's files have many findings each
+  MachineResult r;
+
+  bool reportable(const SourceFile& f) {
     if (!job.card) return true;
     auto [it, fresh] = reportable_memo.try_emplace(f.id(), true);
     if (!fresh) return it->second;
@@ -136,32 +142,33 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
     else if (auto abs = reader.disk_path(f.sd_path()))
       it->second = !settings.excluded(*abs) && !(co.plan.respect_gitignore && gitignore.ignored(*abs));
     return it->second;
-  };
-
-  MachineResult r;
-  if (pre) {
-    if (pre->error) std::rethrow_exception(pre->error);
-    r = std::move(pre->result);
-    shift_file_ids(r, sm.adopt(pre->sources));
-  } else {
-    r = lint_machine(sm, reader, builtin_rules(), eff.lint);
   }
-  if (job.report_all && co.plan.respect_gitignore && !job.named_despite_exclusion) {
-    // One `git check-ignore` for the whole card rather than one per file.
-    std::vector<std::string> files;
+
+  // Lints the machine, or takes the result linted ahead, and notes what could not be linted.
+  void lint(std::unique_ptr<Prelinted> pre) {
+    if (pre) {
+      if (pre->error) std::rethrow_exception(pre->error);
+      r = std::move(pre->result);
+      shift_file_ids(r, sm.adopt(pre->sources));
+    } else {
+      r = lint_machine(sm, reader, builtin_rules(), eff.lint);
+    }
+    if (job.report_all && co.plan.respect_gitignore && !job.named_despite_exclusion) {
+      // One `git check-ignore` for the whole card rather than one per file.
+      std::vector<std::string> files;
+      for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+        if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(std::move(*abs));
+      gitignore.prefetch(files);
+    }
+    note_unlinted(job, eff, *r.machine, t);
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-      if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(std::move(*abs));
-    gitignore.prefetch(files);
+      if (reportable(*r.machine->unit(i).source)) ++t.linted;
   }
-  note_unlinted(job, eff, *r.machine, t);
-  for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-    if (reportable(*r.machine->unit(i).source)) ++t.linted;
 
-  // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds).
-  if (co.fix || co.diff) {
-    std::map<std::string, std::string> original, current;  // by SD path
-    std::map<std::string, std::string> display;
-    std::map<std::string, size_t> fixed_in;  // fixes applied, by SD path (a fix counts for the file it starts in)
+  // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds), relinting after each.
+  FixedTexts fix_rounds() {
+    FixedTexts fixed;
+    auto& [original, current, display, fixed_in] = fixed;
     FixOptions fo;
     fo.unsafe = co.unsafe_fixes;
     for (int round = 0; round < fo.max_rounds; ++round) {
@@ -184,6 +191,13 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
       }
       r = lint_machine(sm, reader, builtin_rules(), eff.lint);
     }
+    return fixed;
+  }
+
+  // --fix writes the fixed files (a file that cannot be written keeps its text and its findings), --diff collects
+  // the diff.
+  void write_fixes(FixedTexts& fixed) {
+    auto& [original, current, display, fixed_in] = fixed;
     // Nothing is written outside the linted folder (a card's root, a lone file's folder).
     const std::optional<fs::path> root =
         job.card ? std::optional(job.card->root) : std::optional(fs::absolute(job.standalone).parent_path());
@@ -217,7 +231,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
   }
 
   // --add-suppressions: a same-line `; rrflint: disable=…` for every finding still reported.
-  if (co.add_suppressions) {
+  void add_suppressions() {
     std::map<FileId, std::map<uint32_t, std::vector<std::string>>> by_file;
     for (const Diagnostic& d : r.diagnostics) {
       if (d.loc.file == kNoFile || d.code == "RRF900" || d.code == "RRF901") continue;
@@ -248,25 +262,126 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
       ++t.suppressed_files;
     }
     if (job.stdin_bytes && !t.stdout_text) t.stdout_text = *job.stdin_bytes;
-    return true;
   }
 
-  for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-    if (reportable(*r.machine->unit(i).source)) ++t.files;
-  for (Diagnostic& d : r.diagnostics) {
-    if (d.loc.file != kNoFile && !reportable(sm.get(d.loc.file))) continue;
-    t.failing = t.failing || d.severity >= eff.fail_on;
-    t.diags.push_back(std::move(d));
+  // The findings to report go to the totals; --verbose prints the target and its evidence.
+  void collect() {
+    for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+      if (reportable(*r.machine->unit(i).source)) ++t.files;
+    for (Diagnostic& d : r.diagnostics) {
+      if (d.loc.file != kNoFile && !reportable(sm.get(d.loc.file))) continue;
+      t.failing = t.failing || d.severity >= eff.fail_on;
+      t.diags.push_back(std::move(d));
+    }
+    if (co.verbose) {
+      const Target& tg = r.target;
+      std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
+      for (const Evidence& e : tg.evidence)
+        std::cerr << fmt::format("rrflint:   evidence: {} ({}:{})\n", e.what, sm.get(e.loc.file).display_path(),
+                                 sm.get(e.loc.file).position(e.loc.span.begin).line);
+      if (eff.config) std::cerr << "rrflint:   config: " << Origin{Origin::Kind::File, eff.config->files.back(), 0}.str() << "\n";
+    }
   }
-  if (co.verbose) {
-    const Target& tg = r.target;
-    std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
-    for (const Evidence& e : tg.evidence)
-      std::cerr << fmt::format("rrflint:   evidence: {} ({}:{})\n", e.what, sm.get(e.loc.file).display_path(),
-                               sm.get(e.loc.file).position(e.loc.span.begin).line);
-    if (eff.config) std::cerr << "rrflint:   config: " << Origin{Origin::Kind::File, eff.config->files.back(), 0}.str() << "\n";
+};
+
+// One job: lint (unless linted ahead), then the requested rewrite, then collect what is to be reported.
+bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgnore& gitignore, SourceManager& sm,
+             Totals& t, std::unique_ptr<Prelinted> pre = nullptr) {
+  if (job.excluded) {
+    // Excluded stdin: nothing to report, and --fix hands the text back unchanged (an editor must not lose it).
+    if ((co.fix || co.add_suppressions) && job.stdin_bytes) t.stdout_text = *job.stdin_bytes;
+    return true;
+  }
+  Effective eff;
+  if (pre) eff = std::move(pre->eff);
+  else if (!job_settings(job, settings, co_threads(co), eff)) return false;
+  JobRun run{job, co, settings, gitignore, sm, t, eff};
+  run.lint(std::move(pre));
+  if (co.fix || co.diff) {
+    FixedTexts fixed = run.fix_rounds();
+    run.write_fixes(fixed);
+  }
+  if (co.add_suppressions) {
+    run.add_suppressions();
+    return true;
+  }
+  run.collect();
+  return true;
+}
+
+// Runs every job in order; plain checks lint the machines ahead in parallel, rewriting runs (--fix, --diff,
+// --add-suppressions) stay serial. False on a config or option error (reported).
+bool run_jobs(const std::vector<Job>& jobs, const CheckOptions& co, Settings& settings, GitIgnore& gitignore,
+              SourceManager& sm, Totals& t) {
+  std::vector<std::unique_ptr<Prelinted>> ahead;
+  const unsigned threads = co_threads(co);
+  if (!co.fix && !co.diff && !co.add_suppressions && jobs.size() > 1 && threads > 1)
+    ahead = lint_ahead(jobs, settings, threads);
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const Job& j = jobs[i];
+    if (!run_job(j, co, settings, gitignore, sm, t, i < ahead.size() ? std::move(ahead[i]) : nullptr)) {
+      if (settings.config_error()) error(settings.config_error()->str());
+      return false;
+    }
   }
   return true;
+}
+
+// The exit code of a run that linted no file: an error, unless every path was left out on purpose with
+// --force-exclude (a pre-commit hook passes every changed file, excluded ones too).
+int nothing_linted(const Totals& t, const PlanStats& stats, bool io_error) {
+  const bool all_forced = stats.force_excluded > 0 && stats.force_excluded == stats.named;
+  if (all_forced && !io_error) {
+    if (t.stdout_text) std::cout << *t.stdout_text;
+    std::cerr << "rrflint: every path given is excluded (--force-exclude): nothing to lint\n";
+    return kExitClean;
+  }
+  if (t.stdout_text) std::cout << *t.stdout_text;  // --fix on stdin: an editor must get its text back
+  for (const std::string& why : stats.empty) error(why);
+  error("no file was linted");
+  return kExitError;
+}
+
+// --diff: the diff to `os`, a summary to stderr, and the exit code.
+int report_diff(std::ostream& os, const Totals& t, bool io_error) {
+  os << t.diff;
+  os.flush();
+  if (t.fixed_files)
+    std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}\n", t.fixed, t.fixed == 1 ? "" : "s",
+                             t.fixed_files, t.fixed_files == 1 ? "" : "s");
+  else
+    std::cerr << "rrflint: no fixes to apply\n";
+  if (io_error) return kExitError;
+  return t.fixed_files ? kExitFindings : kExitClean;
+}
+
+// The findings of every machine, in a stable order across machines (by path, then position), in `format`.
+void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const CheckOptions& co,
+                   const std::string& format, const std::string& docs_base) {
+  std::stable_sort(t.diags.begin(), t.diags.end(), [&](const Diagnostic& a, const Diagnostic& b) {
+    const std::string& fa = a.loc.file == kNoFile ? std::string() : sm.get(a.loc.file).display_path();
+    const std::string& fb = b.loc.file == kNoFile ? std::string() : sm.get(b.loc.file).display_path();
+    if (fa != fb) return fa < fb;
+    return std::tie(a.loc.span.begin, a.code) < std::tie(b.loc.span.begin, b.code);
+  });
+  std::error_code ec;
+  RenderOptions ro;
+  ro.rules = &builtin_rules();
+  ro.docs_base = docs_base;
+  ro.files_checked = t.files;
+  ro.fixed = t.fixed;
+  ro.unsafe_fixes_enabled = co.unsafe_fixes;
+  ro.cwd = fs::current_path(ec);
+  ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);
+  if (!co.output_file.empty()) ro.color = co.color == "always";
+  else ro.color = use_color(co.color, os == &std::cerr ? fileno(stderr) : fileno(stdout));
+  if (format == "json") render_json(*os, sm, t.diags, ro);
+  else if (format == "json-lines") render_json_lines(*os, sm, t.diags, ro);
+  else if (format == "sarif") render_sarif(*os, sm, t.diags, ro);
+  else if (format == "github") render_github(*os, sm, t.diags, ro);
+  else if (format == "concise") render_concise(*os, sm, t.diags, ro);
+  else render_text(*os, sm, t.diags, ro);
+  os->flush();
 }
 
 }  // namespace
@@ -306,36 +421,13 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
 
   SourceManager sm;
   Totals t;
-  // Plain checks lint the machines in parallel; rewriting runs (--fix, --diff, --add-suppressions) stay serial.
-  std::vector<std::unique_ptr<Prelinted>> ahead;
-  const unsigned threads = co_threads(co);
-  if (!co.fix && !co.diff && !co.add_suppressions && jobs.size() > 1 && threads > 1)
-    ahead = lint_ahead(jobs, settings, threads);
-  for (size_t i = 0; i < jobs.size(); ++i) {
-    const Job& j = jobs[i];
-    if (!run_job(j, co, settings, gitignore, sm, t, i < ahead.size() ? std::move(ahead[i]) : nullptr)) {
-      if (settings.config_error()) error(settings.config_error()->str());
-      return kExitError;
-    }
-  }
+  if (!run_jobs(jobs, co, settings, gitignore, sm, t)) return kExitError;
   io_error = io_error || t.io_error;
   if (t.lone_hint)
     std::cerr << "rrflint: note: a file with no SD card around it (no sys/config.g) is linted on its own, as a macro "
                  "that runs after boot; to lint it as a config.g, run `rrflint check --stdin-filename config.g - < FILE`\n";
-  // Never a pass over nothing: a run that linted no file is an error, unless every path was left out on purpose
-  // with --force-exclude (a pre-commit hook passes every changed file, excluded ones too).
-  if (t.linted == 0) {
-    const bool all_forced = stats.force_excluded > 0 && stats.force_excluded == stats.named;
-    if (all_forced && !io_error) {
-      if (t.stdout_text) std::cout << *t.stdout_text;
-      std::cerr << "rrflint: every path given is excluded (--force-exclude): nothing to lint\n";
-      return kExitClean;
-    }
-    if (t.stdout_text) std::cout << *t.stdout_text;  // --fix on stdin: an editor must get its text back
-    for (const std::string& why : stats.empty) error(why);
-    error("no file was linted");
-    return kExitError;
-  }
+  // Never a pass over nothing.
+  if (t.linted == 0) return nothing_linted(t, stats, io_error);
   for (const std::string& why : stats.empty) warning(why);
 
   if (co.add_suppressions) {
@@ -356,17 +448,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     os = &file_out;
   }
 
-  if (co.diff) {
-    *os << t.diff;
-    os->flush();
-    if (t.fixed_files)
-      std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}\n", t.fixed, t.fixed == 1 ? "" : "s",
-                               t.fixed_files, t.fixed_files == 1 ? "" : "s");
-    else
-      std::cerr << "rrflint: no fixes to apply\n";
-    if (io_error) return kExitError;
-    return t.fixed_files ? kExitFindings : kExitClean;
-  }
+  if (co.diff) return report_diff(*os, t, io_error);
 
   // The fixed stdin text owns stdout; the report then goes to stderr.
   if (t.stdout_text && co.output_file.empty()) {
@@ -375,38 +457,12 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     os = &std::cerr;
   }
 
-  // Stable order across machines: by path, then position.
-  std::stable_sort(t.diags.begin(), t.diags.end(), [&](const Diagnostic& a, const Diagnostic& b) {
-    const std::string& fa = a.loc.file == kNoFile ? std::string() : sm.get(a.loc.file).display_path();
-    const std::string& fb = b.loc.file == kNoFile ? std::string() : sm.get(b.loc.file).display_path();
-    if (fa != fb) return fa < fb;
-    return std::tie(a.loc.span.begin, a.code) < std::tie(b.loc.span.begin, b.code);
-  });
-  std::error_code ec;
-  RenderOptions ro;
-  ro.rules = &builtin_rules();
   // One report, one docs base: that of the first machine's settings (the command line's order), else the
   // working directory's.
-  {
-    Effective first;
-    Job none;
-    if (!job_settings(jobs.empty() ? none : jobs.front(), settings, 1, first)) first.docs_base = default_docs_base();
-    ro.docs_base = first.docs_base;
-  }
-  ro.files_checked = t.files;
-  ro.fixed = t.fixed;
-  ro.unsafe_fixes_enabled = co.unsafe_fixes;
-  ro.cwd = fs::current_path(ec);
-  ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);
-  if (!co.output_file.empty()) ro.color = co.color == "always";
-  else ro.color = use_color(co.color, os == &std::cerr ? fileno(stderr) : fileno(stdout));
-  if (format == "json") render_json(*os, sm, t.diags, ro);
-  else if (format == "json-lines") render_json_lines(*os, sm, t.diags, ro);
-  else if (format == "sarif") render_sarif(*os, sm, t.diags, ro);
-  else if (format == "github") render_github(*os, sm, t.diags, ro);
-  else if (format == "concise") render_concise(*os, sm, t.diags, ro);
-  else render_text(*os, sm, t.diags, ro);
-  os->flush();
+  Effective first;
+  Job none;
+  if (!job_settings(jobs.empty() ? none : jobs.front(), settings, 1, first)) first.docs_base = default_docs_base();
+  render_report(os, sm, t, co, format, first.docs_base);
   trace::mark("rendered");
   if (io_error) return kExitError;
   return t.failing && !co.exit_zero ? kExitFindings : kExitClean;

@@ -73,13 +73,9 @@ bool validate(CliOptions& c) {
   return true;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  rrflint::trace::mark("main");
-  map_large_inputs();
-  // `--add-suppressions[=REASON]`: the reason must be attached with '=', so a path after the flag stays a path.
-  std::vector<std::string> args(argv, argv + argc);
+// Takes `--add-suppressions[=REASON]` out of `args`: the reason must be attached with '=', so a path after the
+// flag stays a path. Its reason ("" without one), if it was given.
+std::optional<std::string> take_add_suppressions(std::vector<std::string>& args) {
   std::optional<std::string> add_suppressions;
   for (auto it = args.begin() + 1; it != args.end();) {
     if (*it == "--") break;
@@ -90,7 +86,11 @@ int main(int argc, char** argv) {
     }
     ++it;
   }
-  // An unknown command gets its own message (CLI11 would say that a subcommand is required).
+  return add_suppressions;
+}
+
+// An unknown command gets its own message (CLI11 would say that a subcommand is required). False after it.
+bool known_command(const std::vector<std::string>& args) {
   if (args.size() > 1 && !args[1].starts_with("-")) {
     static const char* const kCommands[][2] = {{"check", "lint SD cards, sys folders, repositories or files"},
                                                {"config", "print the effective settings and where each came from"},
@@ -100,38 +100,48 @@ int main(int argc, char** argv) {
       std::string list;
       for (const auto& c : kCommands) list += fmt::format("\n  {:<8}{}", c[0], c[1]);
       error(fmt::format("unknown command '{}'; the commands are:{}\n(see `rrflint --help`)", args[1], list));
-      return kExitError;
+      return false;
     }
   }
-  std::vector<char*> argv2;
-  for (std::string& a : args) argv2.push_back(a.data());
+  return true;
+}
 
-  CLI::App app{"rrflint: a static analyser for RepRapFirmware configuration (config.g and its macros)"};
-  app.set_version_flag("--version", std::string("rrflint ") + RRFLINT_VERSION);
-  app.require_subcommand(1);
-  app.failure_message(CLI::FailureMessage::help);
-
+// The subcommands, and the variables CLI11 writes their options to (it keeps pointers to them: never moved).
+struct Commands {
   CliOptions cli;
-  auto add_common = [&](CLI::App* sub) {
-    sub->add_option("--firmware", cli.firmware, "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
-    sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
-    sub->add_option("--select", cli.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
-        ->delimiter(',')->allow_extra_args(false);
-    sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")->delimiter(',')->allow_extra_args(false);
-    sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")->delimiter(',')->allow_extra_args(false);
-    sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
-    sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml");
-    sub->add_flag("--isolated", cli.isolated, "Ignore every config file");
-    sub->add_flag("--no-inline-suppressions", cli.no_inline_suppressions,
-                  "Ignore `; rrflint: disable…` comments (for CI that forbids them)");
-  };
-
-  // check
-  CLI::App* check = app.add_subcommand("check", "Lint SD-card folders, sys folders, repositories or single files");
   CheckOptions co;
   bool no_gitignore = false;
+  std::string model_path, model_format = "text";
+  RuleOptions ro;
+  std::string config_path;
+  CLI::App* check = nullptr;
+  CLI::Option* format_opt = nullptr;  // check's --format
+  CLI::App* model = nullptr;
+  CLI::App* rule = nullptr;
+  CLI::App* config = nullptr;
+};
+
+// The options that check, model and config share.
+void add_common(CLI::App* sub, CliOptions& cli) {
+  sub->add_option("--firmware", cli.firmware, "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
+  sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
+  sub->add_option("--select", cli.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")->delimiter(',')->allow_extra_args(false);
+  sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
+  sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml");
+  sub->add_flag("--isolated", cli.isolated, "Ignore every config file");
+  sub->add_flag("--no-inline-suppressions", cli.no_inline_suppressions,
+                "Ignore `; rrflint: disable…` comments (for CI that forbids them)");
+}
+
+void add_check(CLI::App& app, Commands& c) {
+  CLI::App* check = c.check = app.add_subcommand("check", "Lint SD-card folders, sys folders, repositories or single files");
+  CheckOptions& co = c.co;
+  CliOptions& cli = c.cli;
   check->add_option("paths", co.paths, "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)");
-  CLI::Option* format_opt =
+  c.format_opt =
       check->add_option("--format", co.format, "Output format: text, concise, json, json-lines, sarif, github")
           ->check(CLI::IsMember({"text", "concise", "json", "json-lines", "sarif", "github"}));
   check->add_option("--fail-on", cli.fail_on, "Lowest severity that makes the exit code 1: error, warning, info")
@@ -148,37 +158,95 @@ int main(int argc, char** argv) {
   check->add_flag("--unsafe-fixes", co.unsafe_fixes, "With --fix or --diff, apply unsafe fixes too");
   check->add_flag("--diff", co.diff, "Print the fixes as a unified diff and write nothing (exit 1 if there are any)");
   check->add_flag("--force-exclude", co.plan.force_exclude, "Apply exclude and .gitignore to paths named on the command line");
-  check->add_flag("--no-respect-gitignore", no_gitignore, "Lint files that .gitignore excludes");
-  // Documented here; parsed before CLI11 sees the arguments (see above).
+  check->add_flag("--no-respect-gitignore", c.no_gitignore, "Lint files that .gitignore excludes");
+  // Documented here; parsed before CLI11 sees the arguments (see take_add_suppressions).
   check->footer(
       "  --add-suppressions[=REASON]  Add `; rrflint: disable=…` to every line with a finding (reason after ' -- ')");
-  add_common(check);
+  add_common(check, cli);
+}
 
+void add_model_rule_config(CLI::App& app, Commands& c) {
   // model
-  CLI::App* model = app.add_subcommand("model", "Print the machine model the boot sequence builds");
-  std::string model_path, model_format = "text";
-  model->add_option("path", model_path, "SD-card root, sys folder or config.g")->required();
-  model->add_option("--format", model_format, "text or json")->check(CLI::IsMember({"text", "json"}));
-  add_common(model);
+  CLI::App* model = c.model = app.add_subcommand("model", "Print the machine model the boot sequence builds");
+  model->add_option("path", c.model_path, "SD-card root, sys folder or config.g")->required();
+  model->add_option("--format", c.model_format, "text or json")->check(CLI::IsMember({"text", "json"}));
+  add_common(model, c.cli);
 
   // rule
-  CLI::App* rule = app.add_subcommand("rule", "Print a rule's documentation, or generate docs/rules");
-  RuleOptions ro;
+  CLI::App* rule = c.rule = app.add_subcommand("rule", "Print a rule's documentation, or generate docs/rules");
+  RuleOptions& ro = c.ro;
   rule->add_option("rule", ro.name, "Rule code or name");
   rule->add_flag("--all", ro.all, "Every rule");
   rule->add_option("--format", ro.format, "text (Markdown) or json")->check(CLI::IsMember({"text", "json"}));
   rule->add_option("--generate-docs", ro.generate_dir, "Write every rule's page and an index to this folder");
   rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list");
   rule->add_flag("--check", ro.check, "With --generate-docs: write nothing, exit 1 when a file is stale");
-  rule->add_option("--config", cli.config_path, "With --format json: the config file whose docs-url the links follow");
-  rule->add_flag("--isolated", cli.isolated, "Ignore every config file");
+  rule->add_option("--config", c.cli.config_path, "With --format json: the config file whose docs-url the links follow");
+  rule->add_flag("--isolated", c.cli.isolated, "Ignore every config file");
 
   // config
-  CLI::App* config = app.add_subcommand("config", "Print the effective settings for a path and where each came from");
-  std::string config_path;
-  config->add_option("path", config_path, "A file or folder (default: .)");
-  add_common(config);
-  config->add_option("--fail-on", cli.fail_on, "error, warning or info")->check(CLI::IsMember({"error", "warning", "info"}));
+  CLI::App* config = c.config = app.add_subcommand("config", "Print the effective settings for a path and where each came from");
+  config->add_option("path", c.config_path, "A file or folder (default: .)");
+  add_common(config, c.cli);
+  config->add_option("--fail-on", c.cli.fail_on, "error, warning or info")->check(CLI::IsMember({"error", "warning", "info"}));
+}
+
+// `rrflint model PATH`: the machine model of the first machine PATH names.
+int run_model(const CliOptions& cli, const std::string& model_path, const std::string& model_format) {
+  Settings settings(cli);
+  std::vector<Job> jobs;
+  bool io_error = false;
+  GitIgnore gitignore;
+  plan({model_path}, PlanOptions{}, settings, gitignore, jobs, io_error);
+  if (settings.config_error()) {
+    error(settings.config_error()->str());
+    return kExitError;
+  }
+  if (io_error || jobs.empty()) return kExitError;
+  const Job& job = jobs.front();
+  Effective eff;
+  if (!settings.effective(job.card ? job.card->sys_dir : job.standalone.parent_path(), eff)) {
+    error(settings.config_error()->str());
+    return kExitError;
+  }
+  eff.lint.threads = default_threads();
+  SourceManager sm;
+  JobReader reader(job);
+  MachineResult r = lint_machine(sm, reader, builtin_rules(), eff.lint);
+  bool config_unreadable = false;
+  for (const LoadProblem& p : r.machine->problems()) {
+    const bool is_config = to_lower(p.sd_path) == to_lower(eff.lint.sys_dir + "/config.g");
+    (is_config ? error : warning)(fmt::format("{}: {}", p.display, p.message));
+    config_unreadable = config_unreadable || is_config;
+  }
+  if (config_unreadable || r.machine->unit_count() == 0) {
+    if (!config_unreadable) error(fmt::format("{}: no G-code file to build a model from", model_path));
+    return kExitError;
+  }
+  if (model_format == "json") render_model_json(std::cout, sm, r, job.title);
+  else render_model_text(std::cout, sm, r, job.title);
+  return kExitClean;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rrflint::trace::mark("main");
+  map_large_inputs();
+  std::vector<std::string> args(argv, argv + argc);
+  const std::optional<std::string> add_suppressions = take_add_suppressions(args);
+  if (!known_command(args)) return kExitError;
+  std::vector<char*> argv2;
+  for (std::string& a : args) argv2.push_back(a.data());
+
+  CLI::App app{"rrflint: a static analyser for RepRapFirmware configuration (config.g and its macros)"};
+  app.set_version_flag("--version", std::string("rrflint ") + RRFLINT_VERSION);
+  app.require_subcommand(1);
+  app.failure_message(CLI::FailureMessage::help);
+  Commands c;
+  add_check(app, c);
+  add_model_rule_config(app, c);
+  CliOptions& cli = c.cli;
 
   try {
     app.parse(static_cast<int>(argv2.size()), argv2.data());
@@ -186,14 +254,14 @@ int main(int argc, char** argv) {
     int code = app.exit(e);
     return code == 0 ? kExitClean : kExitError;
   }
-  if (add_suppressions && !check->parsed()) {
+  if (add_suppressions && !c.check->parsed()) {
     error("--add-suppressions is an option of `rrflint check`");
     return kExitError;
   }
 
-  if (rule->parsed()) return run_rule(ro, cli);
+  if (c.rule->parsed()) return run_rule(c.ro, c.cli);
 
-  for (CLI::App* sub : {check, model, config}) {
+  for (CLI::App* sub : {c.check, c.model, c.config}) {
     if (!sub->parsed()) continue;
     cli.select_given = sub->get_option("--select")->count() > 0;
     cli.extend_select_given = sub->get_option("--extend-select")->count() > 0;
@@ -201,48 +269,13 @@ int main(int argc, char** argv) {
   }
   if (!validate(cli)) return kExitError;
 
-  if (config->parsed()) return run_config(cli, config_path);
+  if (c.config->parsed()) return run_config(cli, c.config_path);
+  if (c.model->parsed()) return run_model(cli, c.model_path, c.model_format);
 
-  if (model->parsed()) {
-    Settings settings(cli);
-    std::vector<Job> jobs;
-    bool io_error = false;
-    GitIgnore gitignore;
-    plan({model_path}, PlanOptions{}, settings, gitignore, jobs, io_error);
-    if (settings.config_error()) {
-      error(settings.config_error()->str());
-      return kExitError;
-    }
-    if (io_error || jobs.empty()) return kExitError;
-    const Job& job = jobs.front();
-    Effective eff;
-    if (!settings.effective(job.card ? job.card->sys_dir : job.standalone.parent_path(), eff)) {
-      error(settings.config_error()->str());
-      return kExitError;
-    }
-    eff.lint.threads = default_threads();
-    SourceManager sm;
-    JobReader reader(job);
-    MachineResult r = lint_machine(sm, reader, builtin_rules(), eff.lint);
-    bool config_unreadable = false;
-    for (const LoadProblem& p : r.machine->problems()) {
-      const bool is_config = to_lower(p.sd_path) == to_lower(eff.lint.sys_dir + "/config.g");
-      (is_config ? error : warning)(fmt::format("{}: {}", p.display, p.message));
-      config_unreadable = config_unreadable || is_config;
-    }
-    if (config_unreadable || r.machine->unit_count() == 0) {
-      if (!config_unreadable) error(fmt::format("{}: no G-code file to build a model from", model_path));
-      return kExitError;
-    }
-    if (model_format == "json") render_model_json(std::cout, sm, r, job.title);
-    else render_model_text(std::cout, sm, r, job.title);
-    return kExitClean;
-  }
-
-  co.format_given = format_opt->count() > 0;
-  co.add_suppressions = add_suppressions;
-  co.plan.respect_gitignore = !no_gitignore;
-  const int rc = run_check(cli, co);
+  c.co.format_given = c.format_opt->count() > 0;
+  c.co.add_suppressions = add_suppressions;
+  c.co.plan.respect_gitignore = !c.no_gitignore;
+  const int rc = run_check(cli, c.co);
   trace::mark("freed");
   return rc;
 }

@@ -244,7 +244,8 @@ def main() -> int:
     print(f"      fixtures/{name}/ (2 positive and 2 negative skeleton cases).")
     print("next: replace every TODO in the rule and its fixtures, then")
     print("      cmake --build build && cmake --build build --target rrflint_docs && "
-          "build/rrflint_tests \"[fixtures],[docs]\"")
+          "RRFLINT_UPDATE_SNAPSHOTS=1 build/rrflint_tests \"[snapshots]\" && build/rrflint_tests \"[fixtures],[docs]\"")
+    print(f"      and read fixtures/{name}/snapshot.txt (the rendering of the rule's findings) before committing it")
     return 0
 
 

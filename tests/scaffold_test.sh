@@ -60,6 +60,11 @@ cmake -S "$scratch" -B "$scratch/build" -DCMAKE_BUILD_TYPE="$build_type" -DRRFLI
   "${launcher[@]}" "${compiler[@]}" >/dev/null
 cmake --build "$scratch/build" -j2 --target rrflint rrflint_tests
 cmake --build "$scratch/build" --target rrflint_docs >/dev/null
+# The guide's next step: the snapshot of the new rules' findings (fixtures/<name>/snapshot.txt).
+RRFLINT_UPDATE_SNAPSHOTS=1 "$scratch/build/rrflint_tests" "[snapshots]" >/dev/null
+for i in 0 1 2; do
+  [ -s "$scratch/fixtures/${names[$i]}/snapshot.txt" ] || { echo "FAIL: no snapshot for ${names[$i]}"; exit 1; }
+done
 
 for i in 0 1 2; do
   out=$("$scratch/build/rrflint" rule "${codes[$i]}")

@@ -1,12 +1,11 @@
 #include "lint/engine/linter.h"
 
 #include <algorithm>
-#include <atomic>
 #include <optional>
 #include <set>
 #include <tuple>
 
-#include "lint/base/parallel.h"
+#include "lint/engine/schedule.h"
 #include "lint/engine/suppress.h"
 #include "lint/base/trace.h"
 
@@ -144,15 +143,10 @@ void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& 
 
 }  // namespace
 
-MachineResult lint_machine(SourceManager& sources, FileReader& reader, const RuleSet& rule_set,
-                           const LintOptions& options) {
-  MachineResult res;
-  res.machine = std::make_unique<Machine>(sources, reader);
-  Machine& m = *res.machine;
-  m.set_threads(options.threads, options.part_bytes);
-  const std::vector<const Rule*> rules = enabled_rules(rule_set, options);
+namespace {
 
-  // 1. Load and parse every file of the machine.
+// 1. Load and parse every file of the machine. Returns config.g (or its backup), null when there is neither.
+const FileUnit* load_card(Machine& m, FileReader& reader, const LintOptions& options) {
   const FileUnit* config = m.load(options.sys_dir + "/config.g");
   if (!config) config = m.load(options.sys_dir + "/config.g.bak");
   {
@@ -161,33 +155,28 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
     if (options.include_entries)
       for (const std::string& p : files) m.load(p);
   }
+  return config;
+}
 
-  // 2. The firmware target.
-  trace::mark("loaded");
-  res.target = infer_target(m, config, options.firmware, options.board);
-  trace::mark("target");
+// 3. The ordered command graph and 5. the forward pass of the model with the node rules, and what they share:
+// the model builder and the state at the end of boot.
+class ModelRun {
+ public:
+  ModelRun(Machine& machine, MachineResult& result, const LintOptions& lint_options, const NodeDispatch& rules)
+      : m(machine), res(result), options(lint_options), dispatch(rules) {}
 
-  // 3. The ordered command graph, 4. per-file rules on every file loaded (including those the graph reached) and
-  // 5. the forward pass of the model with the node rules. A large machine runs the file rules and its suppression
-  // comments as tasks on other threads while this one builds the graph and runs the forward pass: the tasks that
-  // read only their own file start at once, those that need every file (Rule::whole_card, and the files the graph
-  // loads) once the graph is built. Each task reports to its own sink and the sinks are merged in a fixed order.
-  GraphOptions go;
-  go.firmware = res.target.version;
-  go.sys_dir = options.sys_dir;
-  go.include_entries = options.include_entries;
-  Sink sink;
-  std::optional<ModelBuilder> mb;
-  const NodeDispatch dispatch(rules, options.dispatch_every_node);
-  MachineState boot_end;
-  bool have_boot = false;
-  auto build = [&] {
+  void build() {
+    GraphOptions go;
+    go.firmware = res.target.version;
+    go.sys_dir = options.sys_dir;
+    go.include_entries = options.include_entries;
     res.graph = build_graph(m, go);
     trace::mark("graph");
     mb.emplace(m, res.graph, res.target.version, res.target.board);
     boot_end = mb->initial_state();
-  };
-  auto forward_pass = [&](Sink& node_sink) {
+  }
+
+  void forward_pass(Sink& node_sink) {
     auto check_node = [&](const MachineState& s, NodeId id, int runs, const Node& node,
                           const std::vector<const Rule*>& node_rules) {
       if (runs <= 0 || node_rules.empty()) return;
@@ -226,103 +215,34 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
       }
     }
     trace::mark("forward pass");
-  };
-  auto file_rules = [&](const FileUnit& u, Sink& out, bool whole_card) {
-    const FileContext fc{m, u, res.target, options};
-    for (const Rule* r : rules)
-      if (r->check_file && r->whole_card == whole_card) {
-        const trace::Scope time("rule", r->meta.name);
-        r->check_file(fc, out);
-      }
-  };
-  size_t bytes = 0;
-  for (uint32_t i = 0; i < m.unit_count(); ++i) bytes += m.unit(i).source->size();
-  std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
-  const bool parallel = options.threads > 1 && bytes >= 2 * options.part_bytes;
-  if (parallel) {
-    // The tasks: (file, rule) for the files loaded so far and the rules of one file; the suppression comments of
-    // those files; then, once the graph is built, each whole-card rule on every file, and all of the files the
-    // graph loaded.
-    // The files loaded so far, as pointers: the graph may add files (and move Machine's list) while tasks run.
-    std::vector<const FileUnit*> loaded;
-    for (uint32_t i = 0; i < m.unit_count(); ++i) loaded.push_back(&m.unit(i));
-    std::vector<std::pair<const FileUnit*, const Rule*>> own;
-    std::vector<const Rule*> whole;
-    for (const Rule* r : rules)
-      if (r->check_file && r->whole_card) whole.push_back(r);
-    for (const FileUnit* u : loaded)
-      for (const Rule* r : rules)
-        if (r->check_file && !r->whole_card) own.emplace_back(u, r);
-    const size_t n_dirs = options.inline_suppressions ? loaded.size() : 0;
-    const size_t n_early = own.size() + n_dirs;
-    std::vector<Sink> sinks(n_early + whole.size() + 1);
-    directives.resize(n_dirs);
-    std::vector<std::vector<Directive>> later_directives;  // of the files the graph loaded
-    Sink node_sink;
-    std::atomic<bool> built{false};
-    run_tasks(sinks.size(), options.threads,
-              [&] {
-                struct Done {  // the waiting tasks go on even if the graph throws (the error is rethrown)
-                  std::atomic<bool>& b;
-                  ~Done() {
-                    b = true;
-                    b.notify_all();
-                  }
-                };
-                {
-                  Done done{built};
-                  build();
-                }
-                forward_pass(node_sink);
-              },
-              [&](size_t k) {
-                if (k < own.size()) {
-                  const FileContext fc{m, *own[k].first, res.target, options};
-                  const trace::Scope time("rule", own[k].second->meta.name);
-                  return own[k].second->check_file(fc, sinks[k]);
-                }
-                if (k < n_early) {
-                  const trace::Scope time("suppression comments");
-                  directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed, rule_set);
-                  return;
-                }
-                built.wait(false);
-                if (k < n_early + whole.size()) {
-                  const Rule* r = whole[k - n_early];
-                  const trace::Scope time("rule", r->meta.name);
-                  for (uint32_t i = 0; i < m.unit_count(); ++i)
-                    r->check_file(FileContext{m, m.unit(i), res.target, options}, sinks[k]);
-                  return;
-                }
-                trace::mark("last task started");  // this branch is the last task
-                for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
-                  file_rules(m.unit(i), sinks[k], false);
-                  if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed, rule_set));
-                }
-              });
-    trace::mark("tasks joined");
-    for (auto& d : later_directives) directives.push_back(std::move(d));
-    for (Sink& part : sinks)
-      for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
-    for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
-  } else {
-    build();
-    for (uint32_t i = 0; i < m.unit_count(); ++i) {
-      file_rules(m.unit(i), sink, false);
-      file_rules(m.unit(i), sink, true);
-    }
-    forward_pass(sink);
-  }
-  res.end_of_boot = boot_end;
-  res.has_boot = have_boot;
-  {
-    EndContext ec{m, res.graph, res.target, options, boot_end};
-    for (const Rule* r : rules)
-      if (r->check_end) r->check_end(ec, sink);
   }
 
-  // 6. Severity overrides, de-duplication (a macro run twice reports once), order.
-  auto& out = res.diagnostics;
+  /// The state at the end of boot, and whether there was a boot segment, into the result.
+  void finish() {
+    res.end_of_boot = boot_end;
+    res.has_boot = have_boot;
+  }
+
+ private:
+  Machine& m;
+  MachineResult& res;
+  const LintOptions& options;
+  const NodeDispatch& dispatch;
+  std::optional<ModelBuilder> mb;
+  MachineState boot_end;
+  bool have_boot = false;
+};
+
+// The rules that look at the whole machine once the forward pass is done.
+void run_end_rules(const MachineResult& res, const LintOptions& options, const std::vector<const Rule*>& rules,
+                   Sink& sink) {
+  EndContext ec{*res.machine, res.graph, res.target, options, res.end_of_boot};
+  for (const Rule* r : rules)
+    if (r->check_end) r->check_end(ec, sink);
+}
+
+// 6. Severity overrides, de-duplication (a macro run twice reports once), order.
+void finish_diagnostics(Sink& sink, const LintOptions& options, std::vector<Diagnostic>& out) {
   for (Diagnostic& d : sink.diagnostics()) {
     if (auto it = options.severity.find(std::string(d.code)); it != options.severity.end()) d.severity = it->second;
     out.push_back(std::move(d));
@@ -337,6 +257,51 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
                                  a.message == b.message;
                         }),
             out.end());
+}
+
+}  // namespace
+
+MachineResult lint_machine(SourceManager& sources, FileReader& reader, const RuleSet& rule_set,
+                           const LintOptions& options) {
+  MachineResult res;
+  res.machine = std::make_unique<Machine>(sources, reader);
+  Machine& m = *res.machine;
+  m.set_threads(options.threads, options.part_bytes);
+  const std::vector<const Rule*> rules = enabled_rules(rule_set, options);
+
+  // 1. Load and parse every file of the machine.
+  const FileUnit* config = load_card(m, reader, options);
+
+  // 2. The firmware target.
+  trace::mark("loaded");
+  res.target = infer_target(m, config, options.firmware, options.board);
+  trace::mark("target");
+
+  // 3. The ordered command graph, 4. per-file rules on every file loaded (including those the graph reached) and
+  // 5. the forward pass of the model with the node rules. A large machine runs the file rules and its suppression
+  // comments as tasks on other threads while this one builds the graph and runs the forward pass
+  // (lint/engine/schedule.cc).
+  Sink sink;
+  const NodeDispatch dispatch(rules, options.dispatch_every_node);
+  ModelRun run(m, res, options, dispatch);
+  std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
+  const bool parallel = file_rules_in_parallel(m, options);
+  if (parallel) {
+    run_file_rules_parallel(m, res.target, options, rule_set, rules, [&] { run.build(); },
+                            [&](Sink& node_sink) { run.forward_pass(node_sink); }, sink, directives);
+  } else {
+    run.build();
+    for (uint32_t i = 0; i < m.unit_count(); ++i) {
+      run_file_rules(m, m.unit(i), res.target, options, rules, sink, false);
+      run_file_rules(m, m.unit(i), res.target, options, rules, sink, true);
+    }
+    run.forward_pass(sink);
+  }
+  run.finish();
+  run_end_rules(res, options, rules, sink);
+
+  // 6. Severity overrides, de-duplication, order.
+  finish_diagnostics(sink, options, res.diagnostics);
   // 7. Per-file ignores and suppression comments (lint/engine/suppress.cc), which add RRF900/RRF901.
   trace::mark("end rules, sort");
   apply_suppressions(res, rule_set, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);

@@ -65,11 +65,9 @@ void table(std::ostream& os, const std::vector<std::vector<std::string>>& rows) 
   }
 }
 
-}  // namespace
 
-void render_model_text(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
-  const MachineState& s = r.end_of_boot;
-  os << "Machine: " << title << "\n";
+// The target, its evidence and the board.
+void render_target(std::ostream& os, const SourceManager& sm, const MachineResult& r) {
   os << "Firmware: " << r.target.reason << "\n";
   for (const Evidence& e : r.target.evidence) {
     LineCol lc = sm.get(e.loc.file).position(e.loc.span.begin);
@@ -77,6 +75,10 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   }
   os << "Board: " << r.target.board_reason << "\n";
   if (!r.has_boot) os << "No config.g: the model below is the power-on state.\n";
+}
+
+// The axes and the extruders.
+void render_axes(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << fmt::format("\nAxes ({} total, {} visible){}\n", s.axes.size(), s.visible_axes, s.axes_known ? "" : " (partly unknown)");
   std::vector<std::vector<std::string>> rows{{"index", "axis", "drivers", "kind", "visible", "set at"}};
   for (size_t i = 0; i < s.axes.size(); ++i) {
@@ -95,8 +97,12 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
     os << " (" << drv << ", " << where(r, sm, s.extruders_set) << ")";
   }
   os << "\n";
+}
+
+// Sensors, heaters, fans and probes.
+void render_devices(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << "\nSensors\n";
-  rows = {{"sensor", "type", "created at"}};
+  std::vector<std::vector<std::string>> rows = {{"sensor", "type", "created at"}};
   for (const auto& [n, sn] : s.sensors) rows.push_back({std::to_string(n), sn.type, where(r, sm, sn.created) + (sn.maybe ? " (maybe)" : "")});
   if (rows.size() > 1) table(os, rows); else os << "  none\n";
   os << "\nHeaters\n";
@@ -117,8 +123,12 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   rows = {{"probe", "type", "created at"}};
   for (const auto& [n, p] : s.probes) rows.push_back({std::to_string(n), std::to_string(p.type), where(r, sm, p.created)});
   if (rows.size() > 1) table(os, rows); else os << "  none\n";
+}
+
+// The tools, those whose M563 failed, and the current tool.
+void render_tools(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << fmt::format("\nTools{}\n", s.tools_known ? "" : " (some created with unknown numbers)");
-  rows = {{"tool", "name", "D", "H", "F", "X/Y/Z map", "offsets", "active/standby", "created at"}};
+  std::vector<std::vector<std::string>> rows = {{"tool", "name", "D", "H", "F", "X/Y/Z map", "offsets", "active/standby", "created at"}};
   for (const auto& [n, t] : s.tools) {
     std::string offs;
     for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) {
@@ -138,8 +148,12 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   os << "\nCurrent tool: "
      << (s.current_tool_known ? (s.current_tool >= 0 ? std::to_string(s.current_tool) : std::string("none")) : std::string("unknown"))
      << "\n";
+}
+
+// The workplaces, the mode and the kinematics.
+void render_workplaces(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << "\nWorkplaces\n";
-  rows = {{"slot", "code", "origin"}};
+  std::vector<std::vector<std::string>> rows = {{"slot", "code", "origin"}};
   static const char* kCodes[] = {"", "G54", "G55", "G56", "G57", "G58", "G59", "G59.1", "G59.2", "G59.3"};
   for (int w = 1; w <= 9; ++w) {
     std::string o;
@@ -156,6 +170,18 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   os << "\nMode: " << (s.mode == MachineMode::CNC ? "CNC" : s.mode == MachineMode::Laser ? "laser" : "FFF")
      << fmt::format(", kinematics K{}", s.kinematics)
      << (s.m501 != kNoNode ? fmt::format(", M501 at {}", where(r, sm, s.m501)) : ", no M501") << "\n";
+}
+
+}  // namespace
+
+void render_model_text(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
+  const MachineState& s = r.end_of_boot;
+  os << "Machine: " << title << "\n";
+  render_target(os, sm, r);
+  render_axes(os, sm, r, s);
+  render_devices(os, sm, r, s);
+  render_tools(os, sm, r, s);
+  render_workplaces(os, sm, r, s);
 }
 
 void render_model_json(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
