@@ -119,9 +119,9 @@ Target infer_target(const Machine& m, const FileUnit* config, std::optional<Vers
       const Line& line = pf.lines[li];
       if (!vars && (line.meta == MetaKind::Var || line.meta == MetaKind::Global || line.meta == MetaKind::Set))
         vars = Evidence{Evidence::Kind::Floor, Version(3, 3, 0), fmt::format("'{}' variables need RRF 3.3 or later", meta_keyword(line.meta)), {f, line.code}};
-      if (!meta) meta = Evidence{Evidence::Kind::Floor, Version(3, 1, 0, 0, 0), "meta commands need RRF 3.01 or later", {f, line.code}};
+      if (!meta) meta = Evidence{Evidence::Kind::Floor, kRrf3_1, "meta commands need RRF 3.01 or later", {f, line.code}};
       if (!arrays && has_array_literal(pf.text(line.meta_arg)))
-        arrays = Evidence{Evidence::Kind::Floor, Version(3, 5, 0, 0, 0), "array expressions need RRF 3.5 or later", {f, line.meta_arg}};
+        arrays = Evidence{Evidence::Kind::Floor, kRrf3_5, "array expressions need RRF 3.5 or later", {f, line.meta_arg}};
     }
     // The first command of these codes (no fraction) for which `pred` holds, in file order; UINT32_MAX if none.
     auto first_of = [&](std::initializer_list<int> numbers, auto pred) {

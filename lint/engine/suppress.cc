@@ -391,27 +391,25 @@ void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vec
           Diagnostic diag = make(unused_rule, *fd.unit, at,
                                  fmt::format("unused suppression {} in '{}': {}", names,
                                              text.substr(d.keyword.begin, d.keyword.size()), where));
-          Fix fix;
-          fix.applicability = Applicability::Safe;
+          Fix fix = Fix::safe(whole ? std::string("remove the suppression comment")
+                                    : fmt::format("remove {} from the suppression", names));
           if (whole) {
-            fix.title = "remove the suppression comment";
             const uint32_t line0 = d.line;
             const Span ls = src.line_span(line0);
             if (d.own_line && d.starts_comment) {
               uint32_t e = ls.end + static_cast<uint32_t>(src.terminator(line0).size());
-              fix.edits.push_back(Edit{Location{src.id(), Span{ls.begin, e}}, ""});
+              fix.edits.push_back(Edit::remove(Location{src.id(), Span{ls.begin, e}}));
             } else {
               uint32_t b = d.span.begin;
               while (b > ls.begin && blank(text[b - 1])) --b;
-              fix.edits.push_back(Edit{Location{src.id(), Span{b, d.span.end}}, ""});
+              fix.edits.push_back(Edit::remove(Location{src.id(), Span{b, d.span.end}}));
             }
           } else {
-            fix.title = fmt::format("remove {} from the suppression", names);
             std::string kept;
             for (const SuppressionEntry& e : d.entries)
               if (std::find(unused.begin(), unused.end(), &e) == unused.end())
                 kept += (kept.empty() ? "" : ",") + e.text;
-            fix.edits.push_back(Edit{Location{src.id(), d.list}, kept});
+            fix.edits.push_back(Edit::replace(Location{src.id(), d.list}, kept));
           }
           diag.fix = std::move(fix);
           found.push_back(std::move(diag));
@@ -459,7 +457,7 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
                                 [&](const SuppressionEntry& e) { return r && entry_names(e, r->meta.code); });
         if (!have) add += (existing->entries.empty() && add.empty() ? "" : ",") + n;
       }
-      if (!add.empty()) edits.push_back(Edit{Location{f.id(), Span{existing->list.end, existing->list.end}}, add});
+      if (!add.empty()) edits.push_back(Edit::insert(Location{f.id(), Span{existing->list.end, existing->list.end}}, add));
       continue;
     }
     std::string list;
@@ -476,21 +474,22 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
       while (ind < ls.end && blank(text[ind])) ++ind;
       std::string eol(f.terminator(line0));
       if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-      edits.push_back(Edit{Location{f.id(), Span{ls.begin, ls.begin}},
-                           fmt::format("{}; rrflint: disable-next-line={}{}{}", text.substr(ls.begin, ind - ls.begin),
-                                       list, why, eol)});
+      edits.push_back(Edit::insert(Location{f.id(), Span{ls.begin, ls.begin}},
+                                   fmt::format("{}; rrflint: disable-next-line={}{}{}",
+                                               text.substr(ls.begin, ind - ls.begin), list, why, eol)));
       continue;
     }
     uint32_t at = ls.end;
     while (at > ls.begin && blank(text[at - 1])) --at;
-    edits.push_back(Edit{Location{f.id(), Span{at, at}}, fmt::format(" ; rrflint: disable={}{}", list, why)});
+    edits.push_back(Edit::insert(Location{f.id(), Span{at, at}}, fmt::format(" ; rrflint: disable={}{}", list, why)));
   }
   if (!file_level.empty()) {
     std::string list;
     for (const std::string& n : file_level) list += (list.empty() ? "" : ",") + n;
     std::string eol = f.line_count() > 0 ? std::string(f.terminator(0)) : "";
     if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-    edits.push_back(Edit{Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol)});
+    edits.push_back(
+        Edit::insert(Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol)));
   }
   return edits;
 }
