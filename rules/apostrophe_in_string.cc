@@ -74,9 +74,8 @@ void scan(const FileContext& cx, Span s, Sink& out) {
     }
     if (escapes.empty()) continue;
     const uint32_t close = k < s.end ? k + 1 : s.end;
-    Fix fix{.title = escapes.size() == 1 ? "double the apostrophe" : "double the apostrophes",
-            .applicability = Applicability::Safe};
-    for (uint32_t at : escapes) fix.edits.push_back(Edit{cx.at(Span{at, at}), "'"});
+    Fix fix = Fix::safe(escapes.size() == 1 ? "double the apostrophe" : "double the apostrophes");
+    for (uint32_t at : escapes) fix.edits.push_back(Edit::insert(cx.at(Span{at, at}), "'"));
     const uint32_t first = escapes.front();
     // Show the word around the apostrophe, as written and as RRF reads it.
     uint32_t wb = first, we = first + 2;
@@ -105,8 +104,8 @@ void check(const FileContext& cx, Sink& out) {
     if (line.kind != LineKind::Commands) continue;
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command& c = pf.commands[i];
-      for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
-        if (!lex::is_raw_text(c, *p)) scan(cx, p->value, out);
+      for (const Param& p : pf.params(c))
+        if (!lex::is_raw_text(c, p)) scan(cx, p.value, out);
     }
   }
 }

@@ -72,7 +72,7 @@ NodeId later_creation(const NodeContext& cx, char letter) {
     if (n.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const Command& c = pf.commands[n.index];
-    return c.letter == 'M' && c.number == 584 && c.fraction < 0 && pf.find(c, letter);
+    return c.is('M', 584) && pf.find(c, letter);
   });
 }
 
@@ -84,17 +84,17 @@ void check(const NodeContext& cx, Sink& out) {
   if (!s.axes_known || s.unknown_baseline) return;
   const ParsedFile& pf = cx.parsed();
   const std::string_view order = allowed_axis_letters();
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-    const char L = p->letter;
+  for (const Param& p : pf.params(c)) {
+    const char L = p.letter;
     if (L == 0 || L == 'X' || L == 'Y' || L == 'Z' || L == 'E' || order.find(L) == std::string_view::npos) continue;
     if (is_own_parameter(c, L) || s.axis_index(L) >= 0) continue;
-    if (p->kind == ValueKind::String || p->kind == ValueKind::Text) continue;  // `C"nil"`: a pin, not an axis value
-    if (!pf.find(c, L).is(*p)) continue;  // only the first of duplicate letters counts
+    if (p.kind == ValueKind::String || p.kind == ValueKind::Text) continue;  // `C"nil"`: a pin, not an axis value
+    if (!pf.find(c, L).is(p)) continue;  // only the first of duplicate letters counts
     const std::string axis = L >= 'a' ? fmt::format("'{}", L) : std::string(1, L);
     if (c.letter == 'G' && L == 'C') {
-      const bool old = s.firmware < Version(3, 3, 0, 0, 0);
+      const bool old = s.firmware < kRrf3_3;
       if (old) continue;  // the temperature coefficient: correct up to 3.2
-      out.report(kMeta, cx.at(p->span),
+      out.report(kMeta, cx.at(p.span),
                  fmt::format("'G31 C' is no longer the temperature coefficient (it is 'T' since RRF 3.3): on RRF {} "
                              "it is the C axis offset, and no C axis exists here, so it is ignored",
                              s.firmware.str()));
@@ -103,14 +103,14 @@ void check(const NodeContext& cx, Sink& out) {
     const NodeId later = later_creation(cx, L);
     std::string_view code = pf.text(c.word);
     if (later != kNoNode) {
-      out.report(kMeta, cx.at(p->span),
+      out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,
-                             axis, pf.text(p->span)))
+                             axis, pf.text(p.span)))
           .note(cx.where(later), fmt::format("axis {} is created here", axis));
     } else {
-      out.report(kMeta, cx.at(p->span),
+      out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {}, but no M584 creates axis {}: RRF ignores '{}' without a message",
-                             code, axis, axis, pf.text(p->span)));
+                             code, axis, axis, pf.text(p.span)));
     }
   }
 }

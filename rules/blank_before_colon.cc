@@ -50,25 +50,25 @@ void check(const FileContext& cx, Sink& out) {
   if (!pf.any_blank_before_colon) return;  // the parse's summary: no command has the flag
   for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::BlankBeforeColon)) {
     const Command& c = pf.commands[ci];
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-      if (!p->blank_before_colon || p->letter == 0) continue;
+    for (const Param& p : pf.params(c)) {
+      if (!p.blank_before_colon || p.letter == 0) continue;
       std::vector<Span> blanks;  // each run of blanks before a ':'
-      lex::for_each_plain(t, p->value, [&](uint32_t k) {
-        if (t[k] != ':' || k == p->value.begin || !lex::is_blank(t[k - 1])) return true;
+      lex::for_each_plain(t, p.value, [&](uint32_t k) {
+        if (t[k] != ':' || k == p.value.begin || !lex::is_blank(t[k - 1])) return true;
         uint32_t b = k;
-        while (b > p->value.begin && lex::is_blank(t[b - 1])) --b;
+        while (b > p.value.begin && lex::is_blank(t[b - 1])) --b;
         blanks.push_back(Span{b, k});
         return true;
       });
       if (blanks.empty()) continue;
       const Span first = blanks.front();
-      Fix fix{.title = "remove the blank before ':'", .applicability = Applicability::Safe};
-      for (Span s : blanks) fix.edits.push_back(Edit{cx.at(s), ""});
-      const std::string letter = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
+      Fix fix = Fix::safe("remove the blank before ':'");
+      for (Span s : blanks) fix.edits.push_back(Edit::remove(cx.at(s)));
+      const std::string letter = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
       out.report(kMeta, cx.at(Span{first.begin, first.end + 1}),
                  fmt::format("blank before ':' ends the list: RRF reads '{}{}' and ignores '{}'", letter,
-                             t.substr(p->value.begin, first.begin - p->value.begin),
-                             lex::clip(t.substr(first.end, p->value.end - first.end))))
+                             t.substr(p.value.begin, first.begin - p.value.begin),
+                             lex::clip(t.substr(first.end, p.value.end - first.end))))
           .fix(std::move(fix));
     }
   }

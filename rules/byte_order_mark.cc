@@ -55,8 +55,7 @@ void check(const FileContext& cx, Sink& out) {
   const std::string_view first = src.slice(src.line_span(0)).substr(3);
   const size_t k = first.find_first_not_of(" \t");
   const bool code = k != std::string_view::npos && first[k] != ';';
-  Fix fix{.title = "remove the byte-order mark", .applicability = Applicability::Safe};
-  fix.edits.push_back(Edit{cx.at(Span{0, 3}), ""});
+  Fix fix = Fix::safe("remove the byte-order mark", Edit::remove(cx.at(Span{0, 3})));
   out.report(kMeta, cx.at(Span{0, 3}),
              code ? "file starts with a UTF-8 byte-order mark: standalone RRF reads it as part of the first command, "
                     "which is lost ('Bad command')"

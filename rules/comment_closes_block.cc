@@ -105,9 +105,9 @@ void check(const FileContext& cx, Sink& out) {
     if (j >= lines.size()) continue;
     const Line& next = lines[j];
 
-    Fix fix{.title = "indent the comment like the block", .applicability = Applicability::Safe};
+    Fix fix = Fix::safe("indent the comment like the block");
     const std::string indent(pf.text(lex::indentation(pf, *prev)));
-    for (const Span& c : run) fix.edits.push_back(Edit{cx.at(Span{c.begin, c.begin}), indent});
+    for (const Span& c : run) fix.edits.push_back(Edit::insert(cx.at(Span{c.begin, c.begin}), indent));
     const Span at{line.span.begin, line.span.begin + 1};
     const uint32_t next_no = cx.source().position(next.span.begin).line;
 

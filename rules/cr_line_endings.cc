@@ -45,12 +45,10 @@ The fix replaces every lone CR with LF. It is safe: it changes only line endings
 void check(const FileContext& cx, Sink& out) {
   const SourceFile& src = cx.source();
   if (!src.endings().cr_only() || !cr_is_not_a_line_end(cx.target.version)) return;
-  Fix fix;
-  fix.title = "replace CR line endings with LF";
-  fix.applicability = Applicability::Safe;
+  Fix fix = Fix::safe("replace CR line endings with LF");
   std::string_view t = src.text();
   for (uint32_t i = 0; i < t.size(); ++i)
-    if (t[i] == '\r') fix.edits.push_back(Edit{cx.at(Span{i, i + 1}), "\n"});
+    if (t[i] == '\r') fix.edits.push_back(Edit::replace(cx.at(Span{i, i + 1}), "\n"));
   const Span first = src.line_span(0);
   const bool comment_first = !t.empty() && src.slice(first).find_first_not_of(" \t") != std::string_view::npos &&
                              src.slice(first)[src.slice(first).find_first_not_of(" \t")] == ';';

@@ -70,27 +70,26 @@ void check(const FileContext& cx, Sink& out) {
     auto usable = [&](const Param& p) {
       return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) && !in_word(p);
     };
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-      if (!usable(*p)) continue;
-      ParamRef first = pf.find(c, p->letter);
-      if (first.is(*p) || !usable(*first)) continue;
+    for (const Param& p : pf.params(c)) {
+      if (!usable(p)) continue;
+      ParamRef first = pf.find(c, p.letter);
+      if (first.is(p) || !usable(*first)) continue;
       // Report each later duplicate once: only against the first occurrence.
-      const std::string name = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
-      const bool same = pf.text(p->value) == pf.text(first->value);
+      const std::string name = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
+      const bool same = pf.text(p.value) == pf.text(first->value);
       Report r = out.report(
-          kMeta, cx.at(p->span),
+          kMeta, cx.at(p.span),
           same ? fmt::format("'{}' repeats a parameter of '{}': RRF reads only the first '{}', so the repeat does "
                              "nothing",
-                             lex::clip(pf.text(p->span)), lex::word(pf, c), name)
+                             lex::clip(pf.text(p.span)), lex::word(pf, c), name)
                : fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
-                             lex::clip(pf.text(p->span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
+                             lex::clip(pf.text(p.span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
       r.note(cx.at(first->span), fmt::format("the first '{}' is here", name));
       if (same) {  // removing an exact repeat changes nothing: a safe fix
-        uint32_t b = p->span.begin;
+        uint32_t b = p.span.begin;
         while (b > c.span.begin && lex::is_blank(t[b - 1])) --b;
-        r.fix(Fix{.title = fmt::format("remove the repeated '{}'", lex::clip(pf.text(p->span))),
-                  .applicability = Applicability::Safe,
-                  .edits = {Edit{cx.at(Span{b, p->span.end}), ""}}});
+        r.fix(Fix::safe(fmt::format("remove the repeated '{}'", lex::clip(pf.text(p.span))),
+                        Edit::remove(cx.at(Span{b, p.span.end}))));
       }
     }
   }

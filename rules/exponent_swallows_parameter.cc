@@ -53,11 +53,11 @@ void check(const FileContext& cx, Sink& out) {
   if (!pf.any_exponent) return;  // the parse's summary: no command has the flag
   for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::Exponent)) {
     const Command& c = pf.commands[ci];
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-      if (!p->exponent_letter || p->letter == 0) continue;
+    for (const Param& p : pf.params(c)) {
+      if (!p.exponent_letter || p.letter == 0) continue;
       uint32_t at = 0;
-      lex::for_each_plain(t, p->value, [&](uint32_t k) {
-        if ((t[k] == 'E' || t[k] == 'e') && k > p->value.begin && lex::is_digit(t[k - 1]) && k + 1 < p->value.end &&
+      lex::for_each_plain(t, p.value, [&](uint32_t k) {
+        if ((t[k] == 'E' || t[k] == 'e') && k > p.value.begin && lex::is_digit(t[k - 1]) && k + 1 < p.value.end &&
             lex::is_digit(t[k + 1])) {
           at = k;
           return false;
@@ -66,14 +66,13 @@ void check(const FileContext& cx, Sink& out) {
       });
       if (at == 0) continue;
       uint32_t e = at + 1;
-      while (e < p->value.end && (lex::is_digit(t[e]) || t[e] == '.' || t[e] == ':')) ++e;
-      const std::string letter = p->letter >= 'a' ? fmt::format("'{}", p->letter) : std::string(1, p->letter);
-      Fix fix{.title = fmt::format("insert a blank before '{}'", t[at]), .applicability = Applicability::Safe};
-      fix.edits.push_back(Edit{cx.at(Span{at, at}), " "});
+      while (e < p.value.end && (lex::is_digit(t[e]) || t[e] == '.' || t[e] == ':')) ++e;
+      const std::string letter = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
+      Fix fix = Fix::safe(fmt::format("insert a blank before '{}'", t[at]), Edit::insert(cx.at(Span{at, at}), " "));
       out.report(kMeta, cx.at(Span{at, e}),
                  fmt::format("'{}' straight after the number is read as an exponent of {}'s value '{}', not as an "
                              "'E' parameter: RRF sets no E value here (SBC mode reads one)",
-                             t.substr(at, e - at), letter, t.substr(p->value.begin, at - p->value.begin)))
+                             t.substr(at, e - at), letter, t.substr(p.value.begin, at - p.value.begin)))
           .fix(std::move(fix));
     }
   }

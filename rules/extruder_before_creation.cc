@@ -128,7 +128,7 @@ void check_e_values(const NodeContext& cx, Sink& out) {
   if (e->kind != ValueKind::Number && e->kind != ValueKind::List) return;
   const size_t count = list_items(pf, *e).size();
   if (count <= static_cast<size_t>(s.extruders)) return;
-  const std::string answer = s.firmware >= Version(3, 5, 2, 0, 0)
+  const std::string answer = s.firmware >= kRrf3_5_2
                                  ? std::string("array too long for parameter 'E'")
                                  : fmt::format("array too long, max length = {}", s.extruders);
   std::string what = count == 1 ? "an extruder value" : fmt::format("{} extruder values", count);
@@ -157,9 +157,9 @@ void check_d(const NodeContext& cx, Sink& out) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2) return;
+  if (!cx.is_command() || !cx.certain()) return;
   const MachineState& s = cx.state;
-  if (s.firmware < Version(3, 3, 0, 0, 0) || !s.extruders_known || s.unknown_baseline) return;
+  if (s.firmware < kRrf3_3 || !s.extruders_known || s.unknown_baseline) return;
   const Command& c = cx.command();
   if (c.letter != 'M' || c.fraction >= 0) return;
   switch (c.number) {

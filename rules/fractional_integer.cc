@@ -92,8 +92,8 @@ void check_command(const FileContext& cx, const Command& c, std::string_view let
   if (c.fraction >= 0 || !lex::contains(pf.source->text(), c.span, '.')) return;
   if (!dot_may_count(pf.source->text(), c.span, letters)) return;
   uint32_t seen = 0;  // the letters met so far: RRF reads the first parameter with a letter
-  for (auto it = pf.params(c).begin(); it != ParamRange::iterator(); ++it) {
-    const Param* p = &*it;
+  for (const Param& param : pf.params(c)) {
+    const Param* p = &param;
     const char letter = p->letter;
     if (letter < 'A' || letter > 'Z' || (seen & (1u << (letter - 'A')))) continue;
     seen |= 1u << (letter - 'A');

@@ -53,7 +53,7 @@ takes effect.
 };
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('G', 10) || cx.runs < 2) return;
+  if (!cx.is('G', 10) || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
@@ -64,12 +64,12 @@ void check(const NodeContext& cx, Sink& out) {
   std::optional<Param> first;
   std::vector<std::pair<char, NodeId>> created;  // letter, the later M584 that creates it
   std::vector<char> hidden;
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-    const char L = p->letter;
+  for (const Param& p : pf.params(c)) {
+    const char L = p.letter;
     if (!g10::is_axis_letter(L, s) || g10::axis_visible(s, L) || s.failed_axes.count(L)) continue;
     if (!cx.in_boot() && g10::any_m584_names(cx.machine, L)) continue;  // a macro may create or show it
     if (letters.find(g10::axis_name(L)) != std::string::npos) continue;
-    if (!first) first = *p;
+    if (!first) first = p;
     if (!letters.empty()) letters += ", ";
     letters += g10::axis_name(L);
     if (s.axis_index(L) >= 0) hidden.push_back(L);

@@ -46,7 +46,7 @@ G10 P1 U10
 };
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('G', 10) || cx.runs < 2) return;
+  if (!cx.is('G', 10) || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
@@ -60,11 +60,11 @@ void check(const NodeContext& cx, Sink& out) {
   if (g10::classify(pf, c, s) != g10::Form::Retract) return;
   std::string letters;
   std::vector<char> list;
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-    if (!g10::is_axis_letter(p->letter, s)) continue;
+  for (const Param& p : pf.params(c)) {
+    if (!g10::is_axis_letter(p.letter, s)) continue;
     if (!letters.empty()) letters += ", ";
-    letters += g10::axis_name(p->letter);
-    list.push_back(p->letter);
+    letters += g10::axis_name(p.letter);
+    list.push_back(p.letter);
   }
   if (list.empty()) return;
   if (!cx.in_boot())

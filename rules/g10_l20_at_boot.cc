@@ -46,12 +46,12 @@ bool position_set_before(const NodeContext& cx) {
   return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
     if (n.kind != NodeKind::Command) return false;
     const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
-    return c.letter == 'G' && (c.number == 92 || c.number == 28) && c.fraction < 0;
+    return c.is('G', 92) || c.is('G', 28);
   }) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('G', 10) || cx.runs < 2 || !cx.in_boot()) return;
+  if (!cx.is('G', 10) || !cx.certain() || !cx.in_boot()) return;
   auto L = get_int(cx.parsed(), cx.command(), 'L');
   if (!L.known() || L.value != 20) return;
   if (position_set_before(cx)) return;

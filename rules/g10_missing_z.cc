@@ -69,8 +69,8 @@ bool z_only_g10(const NodeContext& cx, NodeId id) {
   if (id == kNoNode) return false;
   g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, id);
   if (!nc.is('G', 10) || !nc.pf->find(*nc.c, 'Z')) return false;
-  for (auto p = nc.pf->params(*nc.c).begin(); p != ParamRange::iterator(); ++p)
-    if (p->letter != 'Z' && g10::is_axis_letter(p->letter, cx.state)) return false;
+  for (const Param& p : nc.pf->params(*nc.c))
+    if (p.letter != 'Z' && g10::is_axis_letter(p.letter, cx.state)) return false;
   return true;
 }
 

@@ -47,13 +47,13 @@ G10 P0 X0 Y0 Z0
 };
 
 std::string no_tool_reply(Version fw) {
-  if (fw >= Version(3, 4, 0, 0, 0)) return "No tool number given and no current tool";
-  if (fw >= Version(3, 3, 0, 0, 0)) return "No tool selected";
+  if (fw >= kRrf3_4) return "No tool number given and no current tool";
+  if (fw >= kRrf3_3) return "No tool selected";
   return "Attempt to set/report offsets and temperatures for no selected tool";
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2 || !cx.in_boot()) return;
+  if (!cx.is_command() || !cx.certain() || !cx.in_boot()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
@@ -61,9 +61,9 @@ void check(const NodeContext& cx, Sink& out) {
   const bool m568 = c.is('M', 568);
   if (!m568 && !c.is('G', 10)) return;
   if (cx.param('P')) return;
-  if (m568 && fw < Version(3, 3, 0, 0, 0)) return;  // M568 does nothing there (RRF328)
+  if (m568 && fw < kRrf3_3) return;  // M568 does nothing there (RRF328)
   if (!m568 && tools::g10_form(pf, c, &s, fw) != tools::G10Form::Tool) return;
-  if (m568 && fw < Version(3, 4, 0, 0, 0)) {
+  if (m568 && fw < kRrf3_4) {
     out.report(kMeta, cx.at(c.span),
                fmt::format("{} has no 'P': RRF 3.3 requires the tool number in M568 and answers 'missing parameter "
                            "'P''",

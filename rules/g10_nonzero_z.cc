@@ -88,8 +88,8 @@ bool changes_tools(const ParsedFile& pf, const MachineState& s) {
     if (c.letter == 'G') {
       if (c.number == 28 || c.number == 30 || c.number == 38 || c.number == 53) return true;
       if (c.number >= 0 && c.number <= 3)
-        for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
-          if (g10::is_axis_letter(p->letter, s)) return true;
+        for (const Param& p : pf.params(c))
+          if (g10::is_axis_letter(p.letter, s)) return true;
     } else if (c.letter == 'M' && (c.number == 98 || c.number == 280 || c.number == 42)) {
       return true;
     }

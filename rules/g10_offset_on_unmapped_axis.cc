@@ -94,11 +94,8 @@ void check(const NodeContext& cx, Sink& out) {
     r.note(cx.where(map->origin), fmt::format("{} of tool {} is mapped to {} here", L, ref.number, mapped));
     if (count == 1 && !sets_mapped && single < static_cast<int>(s.axes.size())) {
       const char to = s.axes[static_cast<size_t>(single)].letter;
-      Fix fix;
-      fix.title = fmt::format("use {} instead of {}", g10::axis_name(to), L);
-      fix.applicability = Applicability::Unsafe;
-      fix.edits.push_back(Edit{cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), g10::axis_name(to)});
-      r.fix(std::move(fix));
+      r.fix(Fix::unsafe(fmt::format("use {} instead of {}", g10::axis_name(to), L),
+                        Edit::replace(cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), g10::axis_name(to))));
     }
   }
 }

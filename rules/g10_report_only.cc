@@ -49,9 +49,9 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   auto P = get_int(pf, c, 'P');
   if (P.absent()) return;
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-    if (p->letter == 'P') continue;
-    if (p->letter == 'L') {
+  for (const Param& p : pf.params(c)) {
+    if (p.letter == 'P') continue;
+    if (p.letter == 'L') {
       auto L = get_int(pf, c, 'L');
       if (L.known() && L.value == 1) continue;
     }

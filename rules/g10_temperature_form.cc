@@ -75,24 +75,18 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
       others = true;
     }
   }
-  if (!P && cx.target.version < Version(3, 4, 0, 0, 0)) return std::nullopt;
+  if (!P && cx.target.version < kRrf3_4) return std::nullopt;
   std::string m568 = "M568";
   for (const Param* p : {P, R, S})
     if (p) m568 += " " + std::string(pf.text(p->span));
-  Fix fix;
-  fix.applicability = Applicability::Safe;
-  if (!others) {
-    fix.title = fmt::format("replace with '{}'", m568);
-    fix.edits.push_back(Edit{cx.at(c.span), m568});
-    return fix;
-  }
-  fix.title = fmt::format("move the temperatures to '{}'", m568);
+  if (!others) return Fix::safe(fmt::format("replace with '{}'", m568), Edit::replace(cx.at(c.span), m568));
+  Fix fix = Fix::safe(fmt::format("move the temperatures to '{}'", m568));
   // Delete each of R and S with the blanks before it.
   for (const Param* p : {R, S}) {
     if (!p) continue;
     uint32_t begin = c.word.end;
     for (const Param* q = params.data(); q != p; ++q) begin = q->span.end;
-    fix.edits.push_back(Edit{cx.at(Span{begin, p->span.end}), ""});
+    fix.edits.push_back(Edit::remove(cx.at(Span{begin, p->span.end})));
   }
   const uint32_t l0 = src.line_of(c.span.begin);
   const Span ls = src.line_span(l0);
@@ -100,12 +94,12 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
   const std::string indent(text.substr(0, text.find_first_not_of(" \t")));
   std::string term(src.terminator(l0));
   if (term.empty()) term = l0 > 0 ? std::string(src.terminator(l0 - 1)) : "\n";
-  fix.edits.push_back(Edit{cx.at(Span{ls.end, ls.end}), term + indent + m568});
+  fix.edits.push_back(Edit::insert(cx.at(Span{ls.end, ls.end}), term + indent + m568));
   return fix;
 }
 
 void check(const FileContext& cx, Sink& out) {
-  if (cx.target.version < Version(3, 3, 0, 0, 0)) return;
+  if (cx.target.version < kRrf3_3) return;
   // resurrect.g is written by the firmware (with G10 up to 3.4, with M568 from 3.5), not by the user.
   if (to_lower(cx.unit.sd_path).ends_with("/resurrect.g")) return;
   const ParsedFile& pf = cx.parsed();

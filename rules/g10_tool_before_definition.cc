@@ -71,7 +71,7 @@ bool any_m563_could_create(const Machine& m, int n) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('G', 10) || cx.runs < 2) return;
+  if (!cx.is('G', 10) || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;

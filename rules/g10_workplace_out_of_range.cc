@@ -46,7 +46,7 @@ G10 L2 P1 X0          ; G54
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Version fw = cx.target.version;
-  const bool limited = fw >= Version(3, 4, 0, 0, 0);  // TryGetLimitedUIValue('P', …, 10)
+  const bool limited = fw >= kRrf3_4;  // TryGetLimitedUIValue('P', …, 10)
   for (const uint32_t ci : pf.with_code('G', 10)) {
     const Command& c = pf.commands[ci];
     if (!c.is('G', 10)) continue;

@@ -63,7 +63,7 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   if (c.letter != 'M' || c.fraction >= 0 || (c.number != 563 && c.number != 140 && c.number != 141)) return;
   const MachineState& s = cx.state;
-  if (s.firmware < Version(3, 2, 0, 0, 0) || !s.heaters_known || s.unknown_baseline) return;
+  if (s.firmware < kRrf3_2 || !s.heaters_known || s.unknown_baseline) return;
   auto H = get_int_list(cx.parsed(), c, 'H');
   if (!H.known()) return;
   const Segment& seg = cx.segment();
@@ -75,7 +75,7 @@ void check(const NodeContext& cx, Sink& out) {
     const NodeId create = cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId, const Node& n) {
       if (n.kind != NodeKind::Command) return false;
       const g10::NodeCommand k = g10::command_at(cx.machine, n);
-      if (k.c->letter != 'M' || k.c->number != 950 || k.c->fraction >= 0) return false;
+      if (!k.c->is('M', 950)) return false;
       auto v = get_int(*k.pf, *k.c, 'H');
       unknown = v.unknown();  // some heater is created from an expression: cannot tell
       return unknown || (v.known() && v.value == h && k.pf->find(*k.c, 'C'));

@@ -46,7 +46,7 @@ void check(const FileContext& cx, Sink& out) {
     if (lines.kind(li) == LineKind::Comment || lines.kind(li) == LineKind::Blank) continue;
     if (lines.stored_length(li) <= static_cast<uint32_t>(limit)) continue;
     const Line line = lines[li];
-    const bool aborts = cx.target.version >= Version(3, 1, 0, 0, 0);
+    const bool aborts = cx.target.version >= kRrf3_1;
     Span s{line.code.begin + static_cast<uint32_t>(limit), line.code.end};
     if (s.begin >= s.end) s = line.code;
     out.report(kMeta, cx.at(s),

@@ -62,22 +62,22 @@ void check(const FileContext& cx, Sink& out) {
     if (!c.is('M', 584)) continue;
     // A command written all in lower case means upper case throughout.
     bool upper_seen = !lex::is_lower(t[c.word.begin]);
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
-      if (p->letter != 0 && t[p->span.begin] != '\'' && !lex::is_lower(t[p->span.begin])) upper_seen = true;
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-      if (p->letter == 0 || p->kind == ValueKind::None) continue;
-      const char written = t[p->span.begin];
+    for (const Param& p : pf.params(c))
+      if (p.letter != 0 && t[p.span.begin] != '\'' && !lex::is_lower(t[p.span.begin])) upper_seen = true;
+    for (const Param& p : pf.params(c)) {
+      if (p.letter == 0 || p.kind == ValueKind::None) continue;
+      const char written = t[p.span.begin];
       if (written == '\'') {
-        if (highest == 0 || p->letter <= highest) continue;
-        out.report(kMeta, cx.at(p->span),
+        if (highest == 0 || p.letter <= highest) continue;
+        out.report(kMeta, cx.at(p.span),
                    fmt::format("lowercase axis '{} is beyond '{}, the highest RRF {}{} knows: {} is ignored and "
                                "creates no axis",
-                               p->letter, highest, cx.target.version.str(), board_phrase(cx.target),
-                               pf.text(p->span)));
+                               p.letter, highest, cx.target.version.str(), board_phrase(cx.target),
+                               pf.text(p.span)));
         continue;
       }
       if (!lex::is_lower(written) || !upper_seen || kTakenAsUpper.find(written) != std::string_view::npos) continue;
-      const std::string as_written(pf.text(p->span));
+      const std::string as_written(pf.text(p.span));
       const std::string meant = "'" + as_written;
       std::string support;
       if (highest == 0)
@@ -86,15 +86,15 @@ void check(const FileContext& cx, Sink& out) {
         support = fmt::format(", but RRF {}{} knows lowercase axes up to '{} only", cx.target.version.str(),
                               board_phrase(cx.target), highest);
       if (kUpperAxes.find(written) != std::string_view::npos)
-        out.report(kMeta, cx.at(p->span),
+        out.report(kMeta, cx.at(p.span),
                    fmt::format("'{}' sets axis '{}': without an apostrophe RRF reads the letter as upper case; "
                                "the lowercase axis is written {}{}",
-                               as_written, p->letter, meant, support));
+                               as_written, p.letter, meant, support));
       else
-        out.report(kMeta, cx.at(p->span),
+        out.report(kMeta, cx.at(p.span),
                    fmt::format("'{}' is ignored: '{}' is not an M584 axis letter; a lowercase axis is written "
                                "with an apostrophe, {}{}",
-                               as_written, p->letter, meant, support));
+                               as_written, p.letter, meant, support));
     }
   }
 }

@@ -59,7 +59,7 @@ bool sets_temperatures(const ParsedFile& pf, const Command& c) {
 
 void check(const FileContext& cx, Sink& out) {
   const Version fw = cx.target.version;
-  if (fw >= Version(3, 3, 0, 0, 0)) return;
+  if (fw >= kRrf3_3) return;
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('M', 568)) {
     const Command& c = pf.commands[ci];

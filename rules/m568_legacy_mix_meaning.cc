@@ -46,7 +46,7 @@ M567 P2 E0.5:0.5
 };
 
 void check(const FileContext& cx, Sink& out) {
-  if (cx.target.version < Version(3, 3, 0, 0, 0)) return;
+  if (cx.target.version < kRrf3_3) return;
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('M', 568)) {
     const Command& c = pf.commands[ci];

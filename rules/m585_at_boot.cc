@@ -47,12 +47,12 @@ bool homed_before(const NodeContext& cx) {
   return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
     if (n.kind != NodeKind::Command || n.maybe) return false;
     const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
-    return c.letter == 'G' && c.number == 28 && c.fraction < 0;
+    return c.is('G', 28);
   }) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('M', 585) || cx.runs < 2 || !cx.in_boot()) return;
+  if (!cx.is('M', 585) || !cx.certain() || !cx.in_boot()) return;
   const MachineState& s = cx.state;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();

@@ -16,7 +16,7 @@ inline Command event_command(const EndContext& cx, const GraphEvent& e) {
 
 inline bool event_is_m98(const EndContext& cx, const GraphEvent& e) {
   const Command& c = event_command(cx, e);
-  return c.letter == 'M' && c.number == 98 && c.fraction < 0;
+  return c.is('M', 98);
 }
 
 /// The P parameter's span of the calling command (the path), or the whole command.

@@ -51,15 +51,15 @@ is unsafe: it changes what the standalone firmware reads, to what the author mea
 };
 
 bool sets_mode(const Command& c) {
-  return c.letter == 'M' && c.fraction < 0 && (c.number == 451 || c.number == 452 || c.number == 453);
+  return c.is('M', 451) || c.is('M', 452) || c.is('M', 453);
 }
 
 // Is `off` inside unquoted text that RRF copies as written (M117 text, M550 PName)?
 bool in_raw_text(const ParsedFile& pf, const Line& line, uint32_t off) {
   for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
     const Command& c = pf.commands[i];
-    for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p)
-      if (lex::is_raw_text(c, *p) && off >= p->value.begin && off < p->value.end) return true;
+    for (const Param& p : pf.params(c))
+      if (lex::is_raw_text(c, p) && off >= p.value.begin && off < p.value.end) return true;
   }
   return false;
 }
@@ -100,9 +100,7 @@ void check(const FileContext& cx, Sink& out) {
         if (last && line.comment.empty() && &g == &groups.back()) {
           std::string_view inner = t.substr(g.begin + 1, g.end - g.begin - 2);
           while (!inner.empty() && lex::is_blank(inner.front())) inner.remove_prefix(1);
-          Fix fix{.title = "make it a ';' comment", .applicability = Applicability::Unsafe};
-          fix.edits.push_back(Edit{cx.at(g), fmt::format("; {}", inner)});
-          r.fix(std::move(fix));
+          r.fix(Fix::unsafe("make it a ';' comment", Edit::replace(cx.at(g), fmt::format("; {}", inner))));
         }
       }
     }

@@ -97,7 +97,7 @@ void check(const FileContext& cx, Sink& out) {
       const Command& c = pf.commands[i];
       if (!lex::contains(t, c.span, '"')) continue;
       params.clear();
-      for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) params.push_back(*p);
+      for (const Param& p : pf.params(c)) params.push_back(p);
       for (size_t k = 0; k < params.size(); ++k) {
         const Param& p = params[k];
         if (lex::is_raw_text(c, p)) continue;

@@ -113,7 +113,7 @@ void check_map(const NodeContext& cx, const tools::ToolMap& m, int tool, Sink& o
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('M', 563) || cx.runs < 2) return;
+  if (!cx.is('M', 563) || !cx.certain()) return;
   const MachineState& s = cx.state;
   if (!tools::axes_certain(s)) return;
   const ParsedFile& pf = cx.parsed();

@@ -54,7 +54,7 @@ M563 P1 D1 X3
 };
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('M', 563) || cx.runs < 2) return;
+  if (!cx.is('M', 563) || !cx.certain()) return;
   const MachineState& s = cx.state;
   if (!tools::axes_certain(s)) return;
   const ParsedFile& pf = cx.parsed();

@@ -50,7 +50,7 @@ std::string describe(const MachineState& s, const tools::ToolMap& m) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('M', 563) || cx.runs < 2) return;
+  if (!cx.is('M', 563) || !cx.certain()) return;
   const MachineState& s = cx.state;
   if (!tools::axes_certain(s)) return;
   const ParsedFile& pf = cx.parsed();

@@ -41,7 +41,7 @@ M563 P0 D0 S"Hotend"
 };
 
 void check(const FileContext& cx, Sink& out) {
-  if (cx.target.version < Version(3, 1, 0, 0, 0)) return;
+  if (cx.target.version < kRrf3_1) return;
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('M', 563)) {
     const Command& c = pf.commands[ci];

@@ -133,12 +133,12 @@ NodeId temperature_origin(const NodeContext& cx, int n) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2 || !cx.in_boot()) return;
+  if (!cx.is_command() || !cx.certain() || !cx.in_boot()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   if (c.letter != 'T' || c.fraction >= 0 || c.number_expr || c.number < 0) return;
   const MachineState& s = cx.state;
-  if (s.firmware < Version(3, 1, 0, 0, 0) || s.unknown_baseline) return;
+  if (s.firmware < kRrf3_1 || s.unknown_baseline) return;
   auto P = get_int(pf, c, 'P');
   if (P.present() && (!P.known() || P.value == 0)) return;
   const int n = c.number;

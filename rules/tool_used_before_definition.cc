@@ -71,14 +71,14 @@ bool created_anywhere(const Machine& m, int n) {
 std::string consequence(const Command& c, Version fw, int n) {
   if (c.letter == 'T') return "RRF silently selects no tool";
   if (c.is('M', 207)) return fmt::format("RRF answers 'Tool {} does not exist' and sets nothing", n);
-  if (c.is('M', 568) && fw < Version(3, 4, 0, 0, 0))
+  if (c.is('M', 568) && fw < kRrf3_4)
     return "RRF answers 'Tool settings can only be set for existing tools' and sets nothing";
-  if (c.is('M', 567) && fw < Version(3, 4, 0, 0, 0)) return fmt::format("RRF {} silently ignores it", fw.str());
+  if (c.is('M', 567) && fw < kRrf3_4) return fmt::format("RRF {} silently ignores it", fw.str());
   return "RRF answers 'Invalid tool number' and sets nothing";
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || cx.runs < 2) return;
+  if (!cx.is_command() || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
@@ -86,7 +86,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (c.letter == 'T' && c.fraction < 0) {
     if (c.number_expr || c.number < 0) return;
     n = c.number;
-  } else if (c.is('M', 567) || c.is('M', 207) || (c.is('M', 568) && s.firmware >= Version(3, 3, 0, 0, 0))) {
+  } else if (c.is('M', 567) || c.is('M', 207) || (c.is('M', 568) && s.firmware >= kRrf3_3)) {
     auto P = get_int(pf, c, 'P');
     if (!P.known() || P.value < 0) return;
     n = static_cast<int>(P.value);

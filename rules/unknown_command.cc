@@ -90,7 +90,7 @@ void check(const FileContext& cx, Sink& out) {
     if (implemented(k.letter, k.number, k.fraction, vi)) return;
     const Command& c = pf.commands[i];
     // Before 3.4 a fraction is ignored when the base code exists.
-    if (c.fraction >= 0 && cx.target.version < Version(3, 4, 0, 0, 0) && implemented(c.letter, c.number, -1, vi)) return;
+    if (c.fraction >= 0 && cx.target.version < kRrf3_4 && implemented(c.letter, c.number, -1, vi)) return;
     std::string name = c.fraction >= 0 ? fmt::format("{}{}.{}", c.letter, c.number, c.fraction)
                                        : fmt::format("{}{}", c.letter, c.number);
     if (cx.machine.has_file("/sys/" + name + ".g")) return;

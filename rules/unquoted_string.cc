@@ -72,7 +72,7 @@ constexpr StringParam kStringParams[] = {
 };
 
 // M98 P uses GetQuotedString from 3.5.0-rc.1; the other parameters need quotes in every RRF 3.
-Version needs_quotes_from(int number) { return number == 98 ? Version(3, 5, 0, 2, 1) : Version(3, 0, 0, 0, 0); }
+Version needs_quotes_from(int number) { return number == 98 ? kRrf3_5_0_rc1 : kRrf3_0; }
 
 void check_param(const FileContext& cx, const Command& c, const Param& p, const StringParam& sp, bool quotes_needed,
                  Sink& out) {
@@ -89,8 +89,7 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   if (b >= end) return;
   if (t[b] == '"' || t[b] == '{') {
     if (b == after) return;
-    Fix fix{.title = fmt::format("remove the blank after '{}'", letter), .applicability = Applicability::Safe};
-    fix.edits.push_back(Edit{cx.at(Span{after, b}), ""});
+    Fix fix = Fix::safe(fmt::format("remove the blank after '{}'", letter), Edit::remove(cx.at(Span{after, b})));
     out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
                fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
                            t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
@@ -119,8 +118,8 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
                                       cx.target.version.str())
                         : std::string("RRF 3 needs quotes here and rejects the command ('expected a string "
                                       "expression')");
-  Fix fix{.title = fmt::format("quote '{}'", text), .applicability = Applicability::Unsafe};
-  fix.edits.push_back(Edit{cx.at(Span{after, e}), fmt::format("\"{}\"", text)});
+  Fix fix =
+      Fix::unsafe(fmt::format("quote '{}'", text), Edit::replace(cx.at(Span{after, e}), fmt::format("\"{}\"", text)));
   out.report(kMeta, cx.at(Span{p.span.begin, e}),
              fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why))
       .fix(std::move(fix));
@@ -133,7 +132,7 @@ bool needs_quotes(const Target& target, int number) {
   if (target.version < from) return false;
   if (number != 98 || target.version_given) return true;
   for (const Evidence& e : target.evidence)
-    if (e.kind != Evidence::Kind::Ceiling && e.version >= Version(3, 5, 0, 0, 0)) return true;
+    if (e.kind != Evidence::Kind::Ceiling && e.version >= kRrf3_5) return true;
   return false;
 }
 
@@ -153,7 +152,7 @@ uint32_t letters_without_quote(std::string_view t, Span s) {
 
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  if (cx.target.version < Version(3, 0, 0, 0, 0)) return;
+  if (cx.target.version < kRrf3_0) return;
   // By code, then by command, then by letter: a command's parameters are lexed once for all its letters.
   for (const StringParam& first : kStringParams) {
     if (&first != kStringParams && first.number == (&first)[-1].number) continue;  // the code was done

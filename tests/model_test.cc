@@ -323,7 +323,7 @@ TEST_CASE("infer: the version comes from the header, the syntax, or the newest r
   CHECK(macro->result.target.version == kLatestVersion);
   bool floor35 = false;
   for (const Evidence& ev : macro->result.target.evidence)
-    floor35 = floor35 || (ev.kind == Evidence::Kind::Floor && ev.version == Version(3, 5, 0, 0, 0));
+    floor35 = floor35 || (ev.kind == Evidence::Kind::Floor && ev.version == kRrf3_5);
   CHECK(floor35);
 }
 

@@ -62,7 +62,7 @@ std::string render_command(const ParsedFile& pf, const Command& c) {
   if (c.number_expr) out += "{}";
   else if (c.number != -1 || pf.text(c.word).find('-') != std::string_view::npos) out += std::to_string(c.number);
   if (c.fraction >= 0) out += "." + std::to_string(c.fraction);
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) out += " " + render_param(pf, *p);
+  for (const Param& p : pf.params(c)) out += " " + render_param(pf, p);
   return out;
 }
 

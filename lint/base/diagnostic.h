@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "lint/base/source.h"
@@ -24,10 +25,19 @@ struct Note {
   std::string message;
 };
 
-/// One replacement: an empty span inserts, an empty replacement deletes.
+/// One replacement: an empty span inserts, an empty replacement deletes. Build one with the named constructors.
 struct Edit {
   Location loc;
   std::string replacement;
+
+  /// Inserts `text` at the start of `at` (an empty span, or what the text goes in front of).
+  static Edit insert(Location at, std::string text) {
+    return Edit{Location{at.file, Span{at.span.begin, at.span.begin}}, std::move(text)};
+  }
+  /// Deletes what `what` spans.
+  static Edit remove(Location what) { return Edit{what, std::string()}; }
+  /// Replaces what `what` spans with `text`.
+  static Edit replace(Location what, std::string text) { return Edit{what, std::move(text)}; }
 };
 
 enum class Applicability : uint8_t {
@@ -40,6 +50,27 @@ struct Fix {
   std::string title;  // says what the edit does: "append 'Z0'"
   Applicability applicability = Applicability::Safe;
   std::vector<Edit> edits;
+
+  /// A fix that keeps what the config means: `Fix::safe("remove the byte-order mark", Edit::remove(at))`. With no
+  /// edits, add them to `edits` afterwards (one per match of a loop).
+  template <class... Edits>
+  static Fix safe(std::string title, Edits&&... edits) {
+    return make(Applicability::Safe, std::move(title), std::forward<Edits>(edits)...);
+  }
+  /// A fix that may change behaviour (intended, but check).
+  template <class... Edits>
+  static Fix unsafe(std::string title, Edits&&... edits) {
+    return make(Applicability::Unsafe, std::move(title), std::forward<Edits>(edits)...);
+  }
+
+ private:
+  template <class... Edits>
+  static Fix make(Applicability a, std::string title, Edits&&... edits) {
+    Fix f{std::move(title), a, {}};
+    f.edits.reserve(sizeof...(edits));
+    (f.edits.push_back(std::forward<Edits>(edits)), ...);
+    return f;
+  }
 };
 
 struct Diagnostic {

@@ -10,7 +10,7 @@ std::string Version::str() const {
   if (major < 3) s = fmt::format("{}.{:02}", major, minor);
   if (patch) s += fmt::format(".{}", patch);
   static constexpr const char* kStage[] = {"alpha", "beta", "rc", ""};
-  if (stage < 3) s += fmt::format("-{}.{}", kStage[stage], pre_num);
+  if (stage < kRelease) s += fmt::format("-{}.{}", kStage[stage], pre_num);
   return s;
 }
 
@@ -42,12 +42,12 @@ std::optional<Version> Version::parse(std::string_view s) {
     for (size_t k = i; k < s.size(); ++k) rest += static_cast<char>(std::tolower(static_cast<unsigned char>(s[k])));
     size_t k = 0;
     while (k < rest.size() && (rest[k] == '-' || rest[k] == '.' || rest[k] == '_' || rest[k] == '+')) ++k;
-    uint8_t st = 3;
-    if (rest.compare(k, 5, "alpha") == 0) st = 0, k += 5;
-    else if (rest.compare(k, 4, "beta") == 0) st = 1, k += 4;
-    else if (rest.compare(k, 2, "rc") == 0) st = 2, k += 2;
-    else if (rest.compare(k, 1, "a") == 0) st = 0, k += 1;
-    else if (rest.compare(k, 1, "b") == 0) st = 1, k += 1;
+    uint8_t st = kRelease;
+    if (rest.compare(k, 5, "alpha") == 0) st = kAlpha, k += 5;
+    else if (rest.compare(k, 4, "beta") == 0) st = kBeta, k += 4;
+    else if (rest.compare(k, 2, "rc") == 0) st = kRc, k += 2;
+    else if (rest.compare(k, 1, "a") == 0) st = kAlpha, k += 1;
+    else if (rest.compare(k, 1, "b") == 0) st = kBeta, k += 1;
     else return std::nullopt;
     while (k < rest.size() && (rest[k] == '.' || rest[k] == '-')) ++k;
     uint32_t pn = 0;
@@ -84,14 +84,14 @@ std::optional<Board> parse_board(std::string_view s) {
 }
 
 BoardLimits board_limits(Board b, Version v) {
-  const bool v35 = v >= Version(3, 5, 0, 0, 0), v33 = v >= Version(3, 3, 0, 0, 0), v31 = v >= Version(3, 1, 0, 0, 0);
+  const bool v35 = v >= kRrf3_5, v33 = v >= kRrf3_3, v31 = v >= kRrf3_1;
   switch (b) {
     case Board::Duet3_6HC:
       if (v35) return {30, 20, 32};
       if (v33) return {15, 16, 25};
       return {10, 16, 20};
     case Board::Duet3_Mini:
-      if (v >= Version(3, 4, 0, 0, 0)) return {10, 8, 12};
+      if (v >= kRrf3_4) return {10, 8, 12};
       if (v33) return {10, 5, 12};
       return {8, 5, 8};
     case Board::Duet2:
@@ -106,29 +106,29 @@ BoardLimits board_limits(Board b, Version v) {
 }
 
 int max_line_length(Version v) {
-  if (v >= Version(3, 4, 0, 0, 0)) return 255;
-  if (v >= Version(3, 1, 0, 0, 0)) return 200;
+  if (v >= kRrf3_4) return 255;
+  if (v >= kRrf3_1) return 200;
   return 160;
 }
 
 bool cr_is_not_a_line_end(Version v) {
   if (v.major == 3 && v.minor == 4) return v >= Version(3, 4, 6);
-  return v >= Version(3, 5, 0, 1, 2);
+  return v >= kRrf3_5_0_beta2;
 }
 
 int max_stack_depth(Version v) {
-  if (v >= Version(3, 4, 0, 0, 0)) return 10;
-  if (v >= Version(3, 1, 0, 0, 0)) return 7;
+  if (v >= kRrf3_4) return 10;
+  if (v >= kRrf3_1) return 7;
   return 5;
 }
 
 char highest_lowercase_axis(Board b, Version v) {
-  if (v < Version(3, 3, 0, 0, 0)) return 0;
-  if (v < Version(3, 5, 0, 0, 0)) return 'l';
+  if (v < kRrf3_3) return 0;
+  if (v < kRrf3_5) return 'l';
   return (b == Board::Duet3_6HC || b == Board::Unknown) ? 'z' : 'f';
 }
 
-int default_extruders(Version v) { return v >= Version(3, 3, 0, 0, 0) ? 0 : 1; }
+int default_extruders(Version v) { return v >= kRrf3_3 ? 0 : 1; }
 
 }  // namespace rrflint
 

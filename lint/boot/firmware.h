@@ -10,15 +10,29 @@
 namespace rrflint {
 
 /// An RRF version such as 3.4.6 or 3.5.0-beta.2. Pre-releases sort before the release.
+///
+/// How to write one (the five-number constructor is for the parser; code names versions as below):
+/// - `Version(3, 4, 6)`: a release, here 3.4.6 itself (3.4.6-beta.1 sorts before it);
+/// - `Version::first_of(3, 4)`, `first_of(3, 5, 2)`: the earliest build of 3.4.0 / 3.5.2, its first pre-release,
+///   so that `v >= first_of(3, 4)` holds for every 3.4 build, alphas, betas and RCs included;
+/// - `Version::alpha/beta/rc(3, 5, 0, 2)`: one pre-release, here 3.5.0-beta.2.
+/// The thresholds the code compares with are named below: kRrfX_Y or kRrfX_Y_Z is `first_of` that version
+/// ("needs RRF 3.4": `v >= kRrf3_4`), and a specific pre-release spells its stage: kRrf3_5_0_beta2.
 struct Version {
   uint16_t major = 3, minor = 6, patch = 0;
-  // 0 = alpha, 1 = beta, 2 = rc, 3 = release; `pre_num` is the pre-release number.
+  // kAlpha, kBeta, kRc or kRelease; `pre_num` is the pre-release number.
   uint8_t stage = 3;
   uint8_t pre_num = 0;
+  static constexpr uint8_t kAlpha = 0, kBeta = 1, kRc = 2, kRelease = 3;
 
   constexpr Version() = default;
-  constexpr Version(uint16_t ma, uint16_t mi, uint16_t pa = 0, uint8_t st = 3, uint8_t pn = 0)
+  constexpr Version(uint16_t ma, uint16_t mi, uint16_t pa = 0, uint8_t st = kRelease, uint8_t pn = 0)
       : major(ma), minor(mi), patch(pa), stage(st), pre_num(pn) {}
+  /// The earliest build of ma.mi.pa: its first pre-release (alpha 0), before every other build of it.
+  static constexpr Version first_of(uint16_t ma, uint16_t mi, uint16_t pa = 0) { return {ma, mi, pa, kAlpha, 0}; }
+  static constexpr Version alpha(uint16_t ma, uint16_t mi, uint16_t pa, uint8_t n) { return {ma, mi, pa, kAlpha, n}; }
+  static constexpr Version beta(uint16_t ma, uint16_t mi, uint16_t pa, uint8_t n) { return {ma, mi, pa, kBeta, n}; }
+  static constexpr Version rc(uint16_t ma, uint16_t mi, uint16_t pa, uint8_t n) { return {ma, mi, pa, kRc, n}; }
   constexpr auto key() const {
     return (uint64_t(major) << 40) | (uint64_t(minor) << 28) | (uint64_t(patch) << 16) | (uint64_t(stage) << 8) |
            pre_num;
@@ -36,6 +50,17 @@ struct Version {
 
 /// The newest version rrflint knows; the default target when nothing says otherwise.
 inline constexpr Version kLatestVersion{3, 6, 0};
+
+// The versions the code compares with (see Version): kRrfX_Y is the first build of X.Y, pre-releases included.
+inline constexpr Version kRrf3_0 = Version::first_of(3, 0);
+inline constexpr Version kRrf3_1 = Version::first_of(3, 1);  // RRF writes it 3.01
+inline constexpr Version kRrf3_2 = Version::first_of(3, 2);
+inline constexpr Version kRrf3_3 = Version::first_of(3, 3);
+inline constexpr Version kRrf3_4 = Version::first_of(3, 4);
+inline constexpr Version kRrf3_5 = Version::first_of(3, 5);
+inline constexpr Version kRrf3_5_2 = Version::first_of(3, 5, 2);
+inline constexpr Version kRrf3_5_0_beta2 = Version::beta(3, 5, 0, 2);
+inline constexpr Version kRrf3_5_0_rc1 = Version::rc(3, 5, 0, 1);
 
 enum class Board : uint8_t { Unknown, Duet2, Duet3_6HC, Duet3_Mini, Maestro };
 std::string_view board_name(Board b);

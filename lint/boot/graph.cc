@@ -81,7 +81,7 @@ class Builder {
   std::vector<uint32_t> stack_;  // units currently running (cycle detection)
   std::set<uint32_t> reached_;   // units run by the boot sequence
   bool booting_ = false;         // run_file is running the boot sequence: record the units it reaches
-  int current_tool_ = -1;        // -1 none, -2 unknown
+  int current_tool_ = kNoTool;   // or kUnknownTool
   std::unordered_map<uint64_t, std::optional<std::string>> m98_paths_;  // (unit, command) -> M98 P, if known
   std::unordered_map<uint32_t, std::vector<uint32_t>> acting_;          // unit -> acting_commands
 };
@@ -118,7 +118,7 @@ const FileUnit* Builder::tool_macro(std::string_view kind, int tool) {
   auto numbered = resolve_sd_path(sys_dir_, std::string(kind) + std::to_string(tool) + ".g");
   if (numbered)
     if (const FileUnit* u = m_.load(*numbered)) return u;
-  if (o_.firmware >= Version(3, 5, 0, 0, 0)) {  // generic fallbacks from 3.5 (commit 7cea891d)
+  if (o_.firmware >= kRrf3_5) {  // generic fallbacks from 3.5 (commit 7cea891d)
     auto generic = resolve_sd_path(sys_dir_, std::string(kind) + ".g");
     if (generic) return m_.load(*generic);
   }
@@ -144,13 +144,13 @@ void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool
   if (p.known()) bits = static_cast<int>(p.value);
   else if (p.present()) bits = -1;  // unknown
   int target;
-  if (c.number_expr) target = -2;
-  else if (c.number < 0) target = -1;  // T-1: deselect
+  if (c.number_expr) target = kUnknownTool;
+  else if (c.number < 0) target = kNoTool;  // T-1: deselect
   else target = c.number;
   if (!c.has_number && !c.number_expr) return;  // a bare `T` only reports; `T R1` and friends: not modelled
-  if (target == -2 || bits < 0) {
-    current_tool_ = -2;
-    push(Node{NodeKind::ToolSelect, CallKind::Boot, true, depth, u.index, UINT32_MAX, g_.nodes[site].enter, site});
+  if (target == kUnknownTool || bits < 0) {
+    current_tool_ = kUnknownTool;
+    push(Node{NodeKind::ToolSelect, CallKind::Boot, true, depth, u.index, kNoToolNumber, g_.nodes[site].enter, site});
     return;
   }
   if (target == current_tool_) return;  // same tool: no macros run
@@ -163,12 +163,12 @@ void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool
       call(f->sd_path, CallKind::ToolPre, site, maybe, depth, false, static_cast<uint32_t>(target));
   }
   push(Node{NodeKind::ToolSelect, CallKind::Boot, maybe, depth, u.index,
-            target < 0 ? UINT32_MAX : static_cast<uint32_t>(target), g_.nodes[site].enter, site});
+            target < 0 ? kNoToolNumber : static_cast<uint32_t>(target), g_.nodes[site].enter, site});
   if (target >= 0 && (bits & 4)) {
     if (const FileUnit* f = tool_macro("tpost", target))
       call(f->sd_path, CallKind::ToolPost, site, maybe, depth, false, static_cast<uint32_t>(target));
   }
-  current_tool_ = maybe ? -2 : target;
+  current_tool_ = maybe ? kUnknownTool : target;
 }
 
 void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, bool maybe, uint16_t depth,
@@ -262,7 +262,7 @@ Graph Builder::build() {
     Segment seg;
     seg.begin = static_cast<NodeId>(g_.nodes.size());
     seg.unit = u->index;
-    current_tool_ = -2;
+    current_tool_ = kUnknownTool;
     sys_dir_ = o_.sys_dir;
     run_file(*u, CallKind::Entry, kNoNode, false, 1);
     seg.end = static_cast<NodeId>(g_.nodes.size());

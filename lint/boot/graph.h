@@ -19,6 +19,13 @@ namespace rrflint {
 using NodeId = uint32_t;
 inline constexpr NodeId kNoNode = UINT32_MAX;
 
+// Which tool is selected, as the graph builder follows T commands and as MachineState::current_tool records it.
+inline constexpr int kNoTool = -1;       // none: T-1, the start of config.g, or a T for a tool that does not exist
+inline constexpr int kUnknownTool = -2;  // the graph builder cannot tell: T{…}, a T in an if/while, an entry's start
+/// A ToolSelect node's `index` when its T names no tool: a deselect (T-1) or a tool the graph builder cannot know
+/// (T{…}, an unknown P); the call site's command tells them apart.
+inline constexpr uint32_t kNoToolNumber = UINT32_MAX;
+
 enum class NodeKind : uint8_t {
   Command,     // one G/M/T command of a file
   Enter,       // a file starts running
@@ -36,6 +43,7 @@ struct Node {
   uint16_t depth = 0;              // macro nesting: config.g and entries are 1
   uint32_t unit = 0;               // the FileUnit (Machine::unit) this node belongs to
   uint32_t index = 0;              // Command: index into the unit's commands; ToolSelect/tool macros: tool number
+                                   // (ToolSelect: kNoToolNumber if none is known)
   NodeId enter = kNoNode;          // the Enter node of the file run this node belongs to
   NodeId call_site = kNoNode;      // Enter: the Command node that called the file (M98, M501, T)
 };

@@ -123,10 +123,10 @@ MetaEvidence meta_evidence(const Machine& m) {
         vars = Evidence{Evidence::Kind::Floor, Version(3, 3, 0),
                         fmt::format("'{}' variables need RRF 3.3 or later", meta_keyword(line.meta)), {f, line.code}};
       if (!meta)
-        meta = Evidence{Evidence::Kind::Floor, Version(3, 1, 0, 0, 0), "meta commands need RRF 3.01 or later",
+        meta = Evidence{Evidence::Kind::Floor, kRrf3_1, "meta commands need RRF 3.01 or later",
                         {f, line.code}};
       if (!arrays && has_array_literal(pf.text(line.meta_arg)))
-        arrays = Evidence{Evidence::Kind::Floor, Version(3, 5, 0, 0, 0), "array expressions need RRF 3.5 or later",
+        arrays = Evidence{Evidence::Kind::Floor, kRrf3_5, "array expressions need RRF 3.5 or later",
                           {f, line.meta_arg}};
     }
   }

@@ -29,7 +29,7 @@ void update_limit(Heater& h) {
 void install_tool_heater_defaults(MachineState& s, int h, NodeId id) {
   auto it = s.heaters.find(h);
   if (it == s.heaters.end() || it->second.user_monitor) return;
-  it->second.monitor_limits[0] = s.firmware < Version(3, 1, 0, 0, 0) ? 290.0 : kToolHeaterLimit;
+  it->second.monitor_limits[0] = s.firmware < kRrf3_1 ? 290.0 : kToolHeaterLimit;
   update_limit(it->second);
   it->second.monitor_origin = id;
 }
@@ -49,7 +49,7 @@ void do_m584(Cx& x) {
   auto r = get_int(x.pf, x.c, 'R');
   for (char L : kAxisOrder) {
     if (L >= 'a' && (hi == 0 || L > hi)) break;
-    if (L < 'a' && s.firmware < Version(3, 0, 0, 0, 0) && std::string_view("XYZUVWABC").find(L) == std::string_view::npos) continue;
+    if (L < 'a' && s.firmware < kRrf3_0 && std::string_view("XYZUVWABC").find(L) == std::string_view::npos) continue;
     ParamRef p = x.pf.find(x.c, L);
     if (!p) continue;
     auto drivers = get_driver_list(x.pf, x.c, L);
@@ -271,7 +271,7 @@ void do_g10(Cx& x) {
 }
 
 void do_m568(Cx& x) {
-  if (x.s.firmware < Version(3, 3, 0, 0, 0)) return;  // "The M568 command is no longer needed"
+  if (x.s.firmware < kRrf3_3) return;  // "The M568 command is no longer needed"
   bool known = true;
   int n = tool_for(x, known);
   if (!known) return;
@@ -434,7 +434,7 @@ std::string MachineState::axis_letters(uint32_t bits) const {
 }
 
 ModelBuilder::ModelBuilder(const Machine& m, const Graph& g, Version fw, Board board)
-    : m_(m), g_(g), fw_(fw), board_(board), exec_(g.nodes.size(), 2) {}
+    : m_(m), g_(g), fw_(fw), board_(board), exec_(g.nodes.size(), Runs::Yes) {}
 
 MachineState ModelBuilder::initial_state() const {
   MachineState s;
@@ -447,7 +447,7 @@ MachineState ModelBuilder::initial_state() const {
     s.axes.push_back(a);
   }
   s.visible_axes = 3;
-  if (fw_ < Version(3, 0, 0, 0, 0)) {
+  if (fw_ < kRrf3_0) {
     // RRF 2 has default extruders, heaters and fans; what exists depends on the board.
     s.extruders_known = false;
     s.heaters_known = s.fans_known = s.sensors_known = false;
@@ -459,13 +459,13 @@ MachineState ModelBuilder::initial_state() const {
 }
 
 void ModelBuilder::decide(const MachineState& s, NodeId id, const Node& n) {
-  uint8_t parent = n.enter == kNoNode ? 2 : exec_[n.enter];
+  Runs parent = n.enter == kNoNode ? Runs::Yes : exec_[n.enter];
   if (n.kind == NodeKind::Enter && n.call_site != kNoNode) parent = exec_[n.call_site];
-  uint8_t e = std::min<uint8_t>(parent, n.maybe ? 1 : 2);
+  Runs e = std::min(parent, n.maybe ? Runs::Maybe : Runs::Yes);
   if (n.kind == NodeKind::Enter && (n.call == CallKind::ToolPre || n.call == CallKind::ToolPost)) {
     const int t = static_cast<int>(n.index);
-    if (s.tool_certainly_absent(t)) e = 0;
-    else if (!s.tool(t) || s.tool(t)->maybe || !s.tools_known) e = std::min<uint8_t>(e, 1);
+    if (s.tool_certainly_absent(t)) e = Runs::No;
+    else if (!s.tool(t) || s.tool(t)->maybe || !s.tools_known) e = std::min(e, Runs::Maybe);
   }
   exec_[id] = e;
 }
@@ -476,8 +476,8 @@ void ModelBuilder::decide_commands(const MachineState& s, NodeId begin, NodeId e
 }
 
 void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
-  const uint8_t e = exec_[id];
-  if (e == 0) return;
+  const Runs e = exec_[id];
+  if (e == Runs::No) return;
   switch (n.kind) {
     case NodeKind::Enter:
       if (n.call == CallKind::M501) {
@@ -489,24 +489,24 @@ void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
       if (n.call == CallKind::M501) s.running_m501 = false;
       return;
     case NodeKind::ToolSelect: {
-      if (e == 2 && n.index == UINT32_MAX && n.call_site != kNoNode) {
+      if (e == Runs::Yes && n.index == kNoToolNumber && n.call_site != kNoNode) {
         const Node& site = g_.nodes[n.call_site];
         const Command& c = m_.unit(site.unit).parsed.commands[site.index];
         if (c.has_number && c.number < 0) {  // T-1: no tool is selected afterwards
-          s.current_tool = -1;
+          s.current_tool = kNoTool;
           s.current_tool_known = true;
           s.current_tool_set = n.call_site;
           return;
         }
       }
-      if (e == 1 || n.index == UINT32_MAX) {
+      if (e == Runs::Maybe || n.index == kNoToolNumber) {
         s.current_tool_known = false;
         s.current_tool_set = n.call_site;
         return;
       }
       const int t = static_cast<int>(n.index);
       const Tool* tool = s.tool(t);
-      s.current_tool = tool ? t : -1;  // selecting a tool that does not exist selects none, silently
+      s.current_tool = tool ? t : kNoTool;  // selecting a tool that does not exist selects none, silently
       s.current_tool_known = tool ? !tool->maybe : (s.tools_known && !s.unknown_baseline);
       s.current_tool_set = n.call_site;
       return;
@@ -522,7 +522,7 @@ void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) cons
   // Most commands change nothing here (moves, settings): their code is read from the record alone.
   if (!changes_state(u.parsed.commands.code(n.index))) return;
   const Command& c = u.parsed.commands[n.index];
-  Cx x{s, u.parsed, c, id, exec_[id] == 1};
+  Cx x{s, u.parsed, c, id, exec_[id] == Runs::Maybe};
   if (c.letter == 'G') return do_g10(x);
   switch (c.number) {
     case 584: do_m584(x); break;

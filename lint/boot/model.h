@@ -127,7 +127,7 @@ struct MachineState {
   /// Axis letters an M584 named but could not create (board limit): the M584 node.
   std::map<char, NodeId> failed_axes;
 
-  int current_tool = -1;  // -1: none
+  int current_tool = kNoTool;
   bool current_tool_known = true;
   NodeId current_tool_set = kNoNode;
 
@@ -154,6 +154,14 @@ struct MachineState {
 /// Letters of axes in RRF's creation order for one M584 (docs/firmware-behaviour.md#axes-and-m584).
 std::string_view allowed_axis_letters();
 
+/// Does a graph node run? Ordered: No < Maybe < Yes.
+enum class Runs : uint8_t {
+  No,     // never: a tool-change macro for a tool that certainly does not exist
+  Maybe,  // perhaps: inside an if/while here or in a caller, or a tool macro for a tool that may not exist; the
+          // node's effects are then unknown
+  Yes,    // certainly
+};
+
 /// The forward pass. `step` applies one graph node to the state.
 class ModelBuilder {
  public:
@@ -162,8 +170,8 @@ class ModelBuilder {
   void step(MachineState& s, NodeId id) const { step(s, id, g_.nodes[id]); }
   /// The same with the node already decoded (`n` is g_.nodes[id]).
   void step(MachineState& s, NodeId id, const Node& n) const;
-  /// Does node `id` run? 0 = no, 1 = maybe, 2 = yes (tool macros for a tool that does not exist do not run).
-  int runs(NodeId id) const { return exec_[id]; }
+  /// Does node `id` run? (Tool macros for a tool that does not exist do not run.)
+  Runs runs(NodeId id) const { return exec_[id]; }
   /// Must be called for nodes in order, before step(): decides whether the node runs.
   void decide(const MachineState& s, NodeId id) { decide(s, id, g_.nodes[id]); }
   void decide(const MachineState& s, NodeId id, const Node& n);
@@ -172,7 +180,7 @@ class ModelBuilder {
   /// Can a command of this code change the state? Most cannot (moves, settings): step() does nothing for them,
   /// and the forward pass need not call it.
   static bool changes_state(const CommandTable::Code& c) {
-    return c.fraction < 0 && (c.letter == 'M' || (c.letter == 'G' && c.number == 10));
+    return (c.letter == 'M' && c.fraction < 0) || c.is('G', 10);
   }
 
  private:
@@ -181,7 +189,7 @@ class ModelBuilder {
   const Graph& g_;
   Version fw_;
   Board board_;
-  std::vector<uint8_t> exec_;
+  std::vector<Runs> exec_;
 };
 
 }  // namespace rrflint

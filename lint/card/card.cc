@@ -168,7 +168,7 @@ bool Machine::uses_code(char letter, int32_t number) const {
   for (; seen < units_.size() && !used; ++seen) {
     const ParsedFile& pf = units_[seen]->parsed;
     for (uint32_t i : pf.with_code(letter, number))
-      if (pf.commands[i].number == number && pf.commands[i].fraction < 0) {
+      if (pf.commands[i].is(letter, number)) {
         used = true;
         break;
       }

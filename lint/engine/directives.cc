@@ -270,7 +270,7 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
                                 [&](const SuppressionEntry& e) { return r && entry_names(e, r->meta.code); });
         if (!have) add += (existing->entries.empty() && add.empty() ? "" : ",") + n;
       }
-      if (!add.empty()) edits.push_back(Edit{Location{f.id(), Span{existing->list.end, existing->list.end}}, add});
+      if (!add.empty()) edits.push_back(Edit::insert(Location{f.id(), Span{existing->list.end, existing->list.end}}, add));
       continue;
     }
     std::string list;
@@ -287,21 +287,22 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
       while (ind < ls.end && blank(text[ind])) ++ind;
       std::string eol(f.terminator(line0));
       if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-      edits.push_back(Edit{Location{f.id(), Span{ls.begin, ls.begin}},
-                           fmt::format("{}; rrflint: disable-next-line={}{}{}", text.substr(ls.begin, ind - ls.begin),
-                                       list, why, eol)});
+      edits.push_back(Edit::insert(Location{f.id(), Span{ls.begin, ls.begin}},
+                                   fmt::format("{}; rrflint: disable-next-line={}{}{}",
+                                               text.substr(ls.begin, ind - ls.begin), list, why, eol)));
       continue;
     }
     uint32_t at = ls.end;
     while (at > ls.begin && blank(text[at - 1])) --at;
-    edits.push_back(Edit{Location{f.id(), Span{at, at}}, fmt::format(" ; rrflint: disable={}{}", list, why)});
+    edits.push_back(Edit::insert(Location{f.id(), Span{at, at}}, fmt::format(" ; rrflint: disable={}{}", list, why)));
   }
   if (!file_level.empty()) {
     std::string list;
     for (const std::string& n : file_level) list += (list.empty() ? "" : ",") + n;
     std::string eol = f.line_count() > 0 ? std::string(f.terminator(0)) : "";
     if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-    edits.push_back(Edit{Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol)});
+    edits.push_back(
+        Edit::insert(Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol)));
   }
   return edits;
 }

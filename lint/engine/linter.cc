@@ -177,9 +177,9 @@ class ModelRun {
   }
 
   void forward_pass(Sink& node_sink) {
-    auto check_node = [&](const MachineState& s, NodeId id, int runs, const Node& node,
+    auto check_node = [&](const MachineState& s, NodeId id, Runs runs, const Node& node,
                           const std::vector<const Rule*>& node_rules) {
-      if (runs <= 0 || node_rules.empty()) return;
+      if (runs == Runs::No || node_rules.empty()) return;
       const NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
       for (const Rule* r : node_rules) r->check_node(nc, node_sink);
     };
@@ -199,7 +199,7 @@ class ModelRun {
         // A run of commands of one file run: they all run or not alike. Most wake no rule and change nothing, so
         // each command's code is read from its record and nothing more is done for those.
         mb->decide_commands(s, id, end, st.node);
-        const int runs = mb->runs(id);
+        const Runs runs = mb->runs(id);
         const CommandTable& commands = m.unit(st.node.unit).parsed.commands;
         Node node = st.node;
         for (; id < end; ++id) {

@@ -49,7 +49,7 @@ Location NodeContext::where(NodeId other) const {
 }
 
 Location EndContext::where(NodeId other) const {
-  NodeContext nc{machine, graph, target, options, end_of_boot, other, 2, graph.nodes[other]};
+  NodeContext nc{machine, graph, target, options, end_of_boot, other, Runs::Yes, graph.nodes[other]};
   return nc.where(other);
 }
 

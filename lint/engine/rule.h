@@ -52,9 +52,11 @@ struct NodeContext {
   const LintOptions& options;
   const MachineState& state;  // before this node runs
   NodeId id;
-  int runs;  // 2 = certainly runs, 1 = maybe (conditional), node effects are then unknown
+  Runs runs;  // Yes, or Maybe (conditional: the node's effects are then unknown); rules never see Runs::No
   Node self;  // graph.nodes[id], decoded once
 
+  /// Does the node certainly run (not inside an if/while, here or in a caller)?
+  bool certain() const { return runs == Runs::Yes; }
   const Node& node() const { return self; }
   const FileUnit& unit() const { return machine.unit(self.unit); }
   const ParsedFile& parsed() const { return unit().parsed; }
@@ -62,9 +64,7 @@ struct NodeContext {
   Command command() const { return parsed().commands[self.index]; }
   bool is_command() const { return self.kind == NodeKind::Command; }
   bool is(char letter, int number) const {
-    if (!is_command()) return false;
-    const CommandTable::Code c = parsed().commands.code(self.index);
-    return c.letter == letter && c.number == number && c.fraction < 0;
+    return is_command() && parsed().commands.code(self.index).is(letter, number);
   }
   ParamRef param(char letter) const { return parsed().find(command(), letter); }
   Location at(Span s) const { return Location{unit().source->id(), s}; }
@@ -75,6 +75,10 @@ struct NodeContext {
   /// The segment holding this node.
   const Segment& segment() const;
 };
+
+/// Transitional, for the `cx.runs < 2` still in rules/g10_common.h, rules/tool_common.h and rules/tool_redefined.cc
+/// (being merged into a semantics module): `runs < 2` is `!certain()`. Remove once they use cx.certain().
+constexpr bool operator<(Runs r, int n) { return static_cast<int>(r) < n; }
 
 /// What an end-of-machine rule sees.
 struct EndContext {

@@ -100,27 +100,25 @@ std::string_view unused_where(DirectiveKind k) {
 Fix unused_fix(const SourceFile& src, const Directive& d, const std::vector<const SuppressionEntry*>& unused,
                bool whole, const std::string& names) {
   const std::string_view text = src.text();
-  Fix fix;
-  fix.applicability = Applicability::Safe;
+  Fix fix = Fix::safe(whole ? std::string("remove the suppression comment")
+                            : fmt::format("remove {} from the suppression", names));
   if (whole) {
-    fix.title = "remove the suppression comment";
     const uint32_t line0 = d.line;
     const Span ls = src.line_span(line0);
     if (d.own_line && d.starts_comment) {
       uint32_t e = ls.end + static_cast<uint32_t>(src.terminator(line0).size());
-      fix.edits.push_back(Edit{Location{src.id(), Span{ls.begin, e}}, ""});
+      fix.edits.push_back(Edit::remove(Location{src.id(), Span{ls.begin, e}}));
     } else {
       uint32_t b = d.span.begin;
       while (b > ls.begin && blank(text[b - 1])) --b;
-      fix.edits.push_back(Edit{Location{src.id(), Span{b, d.span.end}}, ""});
+      fix.edits.push_back(Edit::remove(Location{src.id(), Span{b, d.span.end}}));
     }
   } else {
-    fix.title = fmt::format("remove {} from the suppression", names);
     std::string kept;
     for (const SuppressionEntry& e : d.entries)
       if (std::find(unused.begin(), unused.end(), &e) == unused.end())
         kept += (kept.empty() ? "" : ",") + e.text;
-    fix.edits.push_back(Edit{Location{src.id(), d.list}, kept});
+    fix.edits.push_back(Edit::replace(Location{src.id(), d.list}, kept));
   }
   return fix;
 }

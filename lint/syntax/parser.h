@@ -264,6 +264,8 @@ class CommandTable {
     int32_t number;
     int8_t fraction;
     uint32_t line;
+    /// Is this `letter``number` with no fraction (M563, not M563.1)? Like Command::is.
+    bool is(char l, int32_t n) const { return letter == l && number == n && fraction < 0; }
   };
   Code code(size_t i) const {
     const detail::CommandRec& r = rec(i);

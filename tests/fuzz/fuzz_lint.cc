@@ -24,7 +24,7 @@ using namespace rrflint;
 namespace {
 
 constexpr Version kVersions[] = {Version(2, 5, 1), Version(3, 0, 0), Version(3, 2, 2), Version(3, 3, 0),
-                                 Version(3, 4, 6), Version(3, 5, 0, 1, 2), Version(3, 5, 4), kLatestVersion};
+                                 Version(3, 4, 6), kRrf3_5_0_beta2, Version(3, 5, 4), kLatestVersion};
 constexpr Board kBoards[] = {Board::Unknown, Board::Duet2, Board::Duet3_6HC, Board::Duet3_Mini, Board::Maestro};
 
 }  // namespace
