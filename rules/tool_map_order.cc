@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {

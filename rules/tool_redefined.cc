@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -52,12 +52,6 @@ G10 P0 X10 Y5 Z0
 )md",
 };
 
-bool defining(const ParsedFile& pf, const Command& c) {
-  for (char L : {'S', 'D', 'H', 'X', 'Y', 'Z', 'F', 'R'})
-    if (pf.find(c, L)) return true;
-  return false;
-}
-
 /// Would RRF reject this M563 before deleting the old tool (overlapping maps, spec-verification §4)?
 bool rejected_early(const ParsedFile& pf, const Command& c, const MachineState& s) {
   const auto x = tools::tool_map(pf, c, s, 'X'), y = tools::tool_map(pf, c, s, 'Y');
@@ -77,7 +71,7 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   auto P = get_int(pf, c, 'P');
-  if (!P.known() || !defining(pf, c)) return;
+  if (!P.known() || !m563_defines(pf, c)) return;
   const int n = static_cast<int>(P.value);
   const Tool* t = s.tool(n);
   if (!t || t->maybe || s.unknown_baseline || rejected_early(pf, c, s)) return;
