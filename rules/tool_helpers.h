@@ -1,7 +1,7 @@
 // Helpers shared by the G10, tool and temperature rules (RRF202, RRF301–RRF331): look-ahead in the command graph,
-// a tool's X/Y/Z maps with their defaults, the "move this line after that one" fix, and how a command is quoted
-// in a message. What RRF makes of a command (G10's form, whether an M563 defines a tool, the tool a command
-// addresses, a file's role) is decided in lint/boot/commands.h, never here.
+// the "move this line after that one" fix, and how a command is quoted in a message. What RRF makes of a command
+// (G10's form, whether an M563 defines a tool and its X/Y/Z maps, the tool a command addresses, a file's role) is
+// decided in lint/boot/commands.h, never here.
 #pragma once
 
 #include <fmt/format.h>
@@ -208,46 +208,6 @@ inline bool axes_certain(const MachineState& s) {
     if (a.maybe) return false;
   return true;
 }
-
-inline uint32_t visible_mask(const MachineState& s) {
-  return s.visible_axes >= 32 ? 0xFFFFFFFFu : ((1u << s.visible_axes) - 1);
-}
-
-/// One M563 axis map (X, Y or Z) as RRF builds it: the given indices ANDed with the visible axes, or the
-/// default (X→X, Y→Y, Z→Z) when the letter is absent. `known` is false for expressions.
-struct ToolMap {
-  char letter = 'X';
-  bool given = false;
-  bool known = true;
-  uint32_t bits = 0;
-  std::vector<int64_t> indices;  // as written
-  ParamRef param;
-};
-
-inline ToolMap tool_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter) {
-  ToolMap m;
-  m.letter = letter;
-  const int def = letter - 'X';
-  auto v = get_int_list(pf, c, letter);
-  if (v.absent()) {
-    m.bits = 1u << def;
-    return m;
-  }
-  m.given = true;
-  m.param = v.param;
-  if (!v.known()) {
-    m.known = false;
-    return m;
-  }
-  m.indices = v.value;
-  for (int64_t i : v.value)
-    if (i >= 0 && i < 32) m.bits |= 1u << i;
-  m.bits &= visible_mask(s);
-  return m;
-}
-
-/// Does M563 have a Z map on this firmware (3.5+)? Before that `Z` is ignored.
-inline bool has_z_map(Version fw) { return fw >= Version(3, 5, 0, 0, 0); }
 
 /// Formats a temperature without needless decimals: 285, 212.5.
 inline std::string degrees(double v) {

@@ -65,7 +65,7 @@ std::string existing_axes(const MachineState& s, int count) {
   return out;
 }
 
-void check_map(const NodeContext& cx, const tools::ToolMap& m, int tool, Sink& out) {
+void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
   const MachineState& s = cx.state;
   const ParsedFile& pf = cx.parsed();
   for (int64_t i : m.indices) {
@@ -120,8 +120,8 @@ void check(const NodeContext& cx, Sink& out) {
   auto P = get_int(pf, c, 'P');
   const int tool = P.known() ? static_cast<int>(P.value) : -1;
   for (char L : {'X', 'Y', 'Z'}) {
-    if (L == 'Z' && !tools::has_z_map(s.firmware)) continue;
-    const tools::ToolMap m = tools::tool_map(pf, c, s, L);
+    if (L == 'Z' && !has_z_map(s.firmware)) continue;
+    const M563Map m = m563_map(pf, c, s, L);
     if (!m.given || !m.known) continue;
     check_map(cx, m, tool, out);
   }

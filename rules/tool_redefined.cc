@@ -54,8 +54,8 @@ G10 P0 X10 Y5 Z0
 
 /// Would RRF reject this M563 before deleting the old tool (overlapping maps, spec-verification §4)?
 bool rejected_early(const ParsedFile& pf, const Command& c, const MachineState& s) {
-  const auto x = tools::tool_map(pf, c, s, 'X'), y = tools::tool_map(pf, c, s, 'Y');
-  const auto z = tools::has_z_map(s.firmware) ? tools::tool_map(pf, c, s, 'Z') : tools::ToolMap{'Z', false, true, 0};
+  const auto x = m563_map(pf, c, s, 'X'), y = m563_map(pf, c, s, 'Y');
+  const auto z = has_z_map(s.firmware) ? m563_map(pf, c, s, 'Z') : M563Map{'Z', false, true, 0};
   if (!x.known || !y.known || !z.known) return true;  // cannot tell: stay silent
   return (x.bits & y.bits) || (x.bits & z.bits) || (y.bits & z.bits);
 }

@@ -150,3 +150,21 @@ TEST_CASE("commands: file roles by name", "[commands]") {
   CHECK(is_tool_change_role(FileRole::ToolFree));
   CHECK_FALSE(is_tool_change_role(FileRole::Homing));
 }
+
+TEST_CASE("commands: an M563 axis map is the given indices ANDed with the visible axes", "[commands]") {
+  MachineState s = axes(true);
+  s.visible_axes = 3;  // U hidden (M584 P3)
+  auto o = cmd("M563 P0 D0 X0:3 Y{global.y}");
+  const M563Map x = m563_map(o->pf, o->c(), s, 'X');
+  CHECK(x.given);
+  CHECK(x.known);
+  CHECK(x.bits == 1u);  // index 3 is not visible
+  CHECK(x.indices.size() == 2);
+  const M563Map y = m563_map(o->pf, o->c(), s, 'Y');
+  CHECK_FALSE(y.known);
+  const M563Map z = m563_map(o->pf, o->c(), s, 'Z');
+  CHECK_FALSE(z.given);
+  CHECK(z.bits == 4u);  // the default: Z -> Z
+  CHECK_FALSE(has_z_map(Version(3, 4, 0, 0, 0)));
+  CHECK(has_z_map(Version(3, 5, 0, 0, 0)));
+}

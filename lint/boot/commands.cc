@@ -51,6 +51,27 @@ bool m563_defines(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
+M563Map m563_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter) {
+  M563Map m;
+  m.letter = letter;
+  auto v = get_int_list(pf, c, letter);
+  if (v.absent()) {
+    m.bits = 1u << (letter - 'X');
+    return m;
+  }
+  m.given = true;
+  m.param = v.param;
+  if (!v.known()) {
+    m.known = false;
+    return m;
+  }
+  m.indices = v.value;
+  for (int64_t i : v.value)
+    if (i >= 0 && i < 32) m.bits |= 1u << i;
+  m.bits &= visible_mask(s);
+  return m;
+}
+
 ToolRef addressed_tool(const ParsedFile& pf, const Command& c, const MachineState& s) {
   auto P = get_int(pf, c, 'P');
   if (P.known()) return {static_cast<int>(P.value), true, true};

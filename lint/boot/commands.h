@@ -2,7 +2,7 @@
 // here, so that two readings of the same line can never disagree.
 //
 // - which form a G10 takes (tool offsets, a report, workplace origins, firmware retraction, a bad L);
-// - whether an M563 defines a tool or only reports one;
+// - whether an M563 defines a tool or only reports one, and its X/Y/Z axis maps;
 // - the tool a G10 / M568 / M567 addresses (its P, or the current tool);
 // - the role the firmware gives a file by its name (config.g, config-override.g, tpre<n>.g, homeall.g, …).
 //
@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "lint/boot/model.h"
 
@@ -38,6 +39,27 @@ inline bool is_tool_form(G10Form f) { return f == G10Form::Tool || f == G10Form:
 
 /// Does this M563 define (create or re-create) a tool, rather than report one? Any of S D H X Y Z F R.
 bool m563_defines(const ParsedFile& pf, const Command& c);
+
+/// One M563 axis map (X, Y or Z) as RRF builds it (rrf-semantics §2.2, spec-verification §4): the given axis
+/// indices ANDed with the visible axes, or the default (X→X, Y→Y, Z→Z) when the letter is absent. `known` is false
+/// for an expression (then `bits` is 0).
+struct M563Map {
+  char letter = 'X';
+  bool given = false;
+  bool known = true;
+  uint32_t bits = 0;
+  std::vector<int64_t> indices;  // as written
+  ParamRef param;
+};
+M563Map m563_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter);
+
+/// Does M563 have a Z map on this firmware (3.5+)? Before that `Z` is ignored.
+inline bool has_z_map(Version fw) { return fw >= Version(3, 5, 0, 0, 0); }
+
+/// The visible axes as a bit set of axis indices.
+inline uint32_t visible_mask(const MachineState& s) {
+  return s.visible_axes >= 32 ? 0xFFFFFFFFu : ((1u << s.visible_axes) - 1);
+}
 
 /// The tool a G10 / M568 / M567 addresses: its P, or the current tool.
 struct ToolRef {

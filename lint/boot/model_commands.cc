@@ -103,25 +103,18 @@ void do_m584(Cx& x) {
   }
 }
 
-AxisMap read_map(Cx& x, char letter, int default_axis, bool& bad, bool& present) {
+AxisMap read_map(Cx& x, char letter, bool& bad) {
+  const M563Map given = m563_map(x.pf, x.c, x.s, letter);
   AxisMap m;
-  m.bits = 1u << default_axis;
-  ParamRef p = x.pf.find(x.c, letter);
-  if (!p) return m;
-  present = true;
+  m.bits = given.bits;
+  if (!given.given) return m;
   m.origin = x.id;
-  auto v = get_int_list(x.pf, x.c, letter);
-  if (!v.known() || x.maybe) {
+  if (!given.known || x.maybe) {
     m.known = false;
     m.bits = 0;
     return m;
   }
-  if (v.value.size() > static_cast<size_t>(x.s.visible_axes)) bad = true;  // array too long: exception
-  uint32_t bits = 0;
-  for (int64_t i : v.value)
-    if (i >= 0 && i < 32) bits |= 1u << i;
-  const uint32_t visible = x.s.visible_axes >= 32 ? 0xFFFFFFFFu : ((1u << x.s.visible_axes) - 1);
-  m.bits = bits & visible;
+  if (given.indices.size() > static_cast<size_t>(x.s.visible_axes)) bad = true;  // array too long: exception
   if (!x.s.axes_known) m.known = false;
   return m;
 }
@@ -151,14 +144,14 @@ void do_m563(Cx& x) {
     }
     return;
   }
-  bool bad = false, xp = false, yp = false, zp = false;
+  bool bad = false;
   Tool t;
   t.number = n;
   t.created = x.id;
   t.maybe = x.maybe;
-  t.xmap = read_map(x, 'X', 0, bad, xp);
-  t.ymap = read_map(x, 'Y', 1, bad, yp);
-  if (s.firmware >= Version(3, 5, 0, 0, 0)) t.zmap = read_map(x, 'Z', 2, bad, zp);
+  t.xmap = read_map(x, 'X', bad);
+  t.ymap = read_map(x, 'Y', bad);
+  if (has_z_map(s.firmware)) t.zmap = read_map(x, 'Z', bad);
   else t.zmap.bits = 1u << 2;
   if (t.xmap.known && t.ymap.known && t.zmap.known &&
       ((t.xmap.bits & t.ymap.bits) || (t.xmap.bits & t.zmap.bits) || (t.ymap.bits & t.zmap.bits)))
