@@ -168,3 +168,12 @@ TEST_CASE("commands: an M563 axis map is the given indices ANDed with the visibl
   CHECK_FALSE(has_z_map(Version(3, 4, 0, 0, 0)));
   CHECK(has_z_map(Version(3, 5, 0, 0, 0)));
 }
+
+TEST_CASE("commands: M585 probes the first visible axis it names", "[commands]") {
+  MachineState s = axes(true);
+  s.visible_axes = 3;
+  auto u = cmd("M585 U0 Y5 X3");
+  CHECK(m585_axis(u->pf, u->c(), s) == 0);  // X: creation order, not parameter order; U is hidden
+  auto none = cmd("M585 U0 S1");
+  CHECK(m585_axis(none->pf, none->c(), s) == -1);
+}

@@ -81,6 +81,12 @@ ToolRef addressed_tool(const ParsedFile& pf, const Command& c, const MachineStat
   return {s.current_tool, s.current_tool_known && !baseline, false};
 }
 
+int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s) {
+  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()); ++i)
+    if (pf.find(c, s.axes[static_cast<size_t>(i)].letter)) return i;
+  return -1;
+}
+
 namespace {
 
 /// "tpost12.g" with prefix "tpost": 12; "tpost.g": -1; anything else: -2.

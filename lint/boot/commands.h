@@ -70,6 +70,10 @@ struct ToolRef {
 };
 ToolRef addressed_tool(const ParsedFile& pf, const Command& c, const MachineState& s);
 
+/// The axis an M585 probes: the first visible axis it names (GCodes6.cpp `ProbeTool()`), as an axis index; -1 for
+/// none (`No axis specified`).
+int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
+
 /// The role the firmware gives a file by its name (rrf-semantics §4).
 enum class FileRole : uint8_t {
   Other,

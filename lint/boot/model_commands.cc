@@ -381,10 +381,8 @@ void do_m558(Cx& x) {
 // value is unknown and flagged probed. With the current tool unknown, any tool may have been measured.
 void do_m585(Cx& x) {
   MachineState& s = x.s;
-  int axis = -1;
-  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()) && i < kMaxAxisSlots && axis < 0; ++i)
-    if (x.pf.find(x.c, s.axes[static_cast<size_t>(i)].letter)) axis = i;
-  if (axis < 0) return;
+  const int axis = m585_axis(x.pf, x.c, s);
+  if (axis < 0 || axis >= kMaxAxisSlots) return;
   auto measure = [&](Tool& t) {
     t.offsets[static_cast<size_t>(axis)] = Fact{0, false, x.id};
     t.probed[static_cast<size_t>(axis)] = true;
