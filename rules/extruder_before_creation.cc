@@ -1,7 +1,7 @@
 // RRF202 extruder-before-creation: extruder values or extruder numbers before `M584 E…` creates the extruders.
 #include <algorithm>
 
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -60,7 +60,7 @@ std::string extruders_here(int n) {
 }
 
 NodeId later_m584_e(const NodeContext& cx) {
-  return g10::find_later(cx, 'M', 584, [&](const g10::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
+  return tools::find_later(cx, 'M', 584, [&](const tools::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
 }
 
 void note_m584_e(const NodeContext& cx, Report& r) {
@@ -82,11 +82,8 @@ void note_tool_uses(const NodeContext& cx, Report& r, int n) {
     if (!c.is('G', 10) && !c.is('M', 568) && !c.is('M', 563)) return false;
     auto P = get_int(pf, c, 'P');
     if (!P.known() || P.value != n) return false;
-    if (c.is('M', 563)) return g10::m563_defines(pf, c);
-    if (c.is('G', 10)) {
-      auto L = get_int(pf, c, 'L');
-      if (L.present() && (!L.known() || L.value != 1)) return false;
-    }
+    if (c.is('M', 563)) return m563_defines(pf, c);
+    if (c.is('G', 10) && !is_tool_form(g10_form(pf, c, nullptr, cx.state.firmware))) return false;
     r.note(cx.where(i), fmt::format("{} for tool {} here has no effect", c.letter == 'G' ? "G10" : "M568", n));
     return ++notes == 8;
   });
@@ -112,9 +109,9 @@ void check_m563(const NodeContext& cx, Sink& out) {
   std::string tool = n_known ? fmt::format("tool {}", n) : std::string("the tool");
   std::string deleted = n_known && s.tool(n) ? fmt::format(", and the existing tool {} is deleted", n) : "";
   Report r = out.report(kMeta, cx.at(D.param->span),
-                        fmt::format("'{}' names extruder {}, but {}: RRF answers 'bad drive number' and {} is not "
+                        fmt::format("{} names extruder {}, but {}: RRF answers 'bad drive number' and {} is not "
                                     "created{}",
-                                    g10::quote(pf, c), bad, extruders_here(s.extruders), tool, deleted));
+                                    tools::quote(pf, c), bad, extruders_here(s.extruders), tool, deleted));
   note_m584_e(cx, r);
   if (n_known) note_tool_uses(cx, r, n);
 }
@@ -133,7 +130,7 @@ void check_e_values(const NodeContext& cx, Sink& out) {
                                  : fmt::format("array too long, max length = {}", s.extruders);
   std::string what = count == 1 ? "an extruder value" : fmt::format("{} extruder values", count);
   Report r = out.report(kMeta, cx.at(e->span),
-                        fmt::format("'{}' gives {}, but {}: RRF answers '{}' and the E values are lost", g10::quote(pf, c),
+                        fmt::format("{} gives {}, but {}: RRF answers '{}' and the E values are lost", tools::quote(pf, c),
                                     what, extruders_here(s.extruders), answer));
   note_m584_e(cx, r);
 }
@@ -151,7 +148,7 @@ void check_d(const NodeContext& cx, Sink& out) {
   const std::string answer =
       c.number == 572 ? fmt::format("Invalid extruder number '{}'", bad) : std::string("parameter 'D' too high");
   Report r = out.report(kMeta, cx.at(D.param->span),
-                        fmt::format("'{}' names extruder {}, but {}: RRF answers '{}'", g10::quote(pf, c), bad,
+                        fmt::format("{} names extruder {}, but {}: RRF answers '{}'", tools::quote(pf, c), bad,
                                     extruders_here(s.extruders), answer));
   note_m584_e(cx, r);
 }

@@ -1,5 +1,5 @@
 // RRF302 g10-axis-before-creation: a tool offset on an axis that does not exist yet, or is hidden.
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -58,7 +58,7 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   if (!s.axes_known || s.unknown_baseline) return;
-  if (g10::classify(pf, c, s) != g10::Form::Tool) return;
+  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return;
 
   std::string letters;
   std::optional<Param> first;
@@ -66,14 +66,14 @@ void check(const NodeContext& cx, Sink& out) {
   std::vector<char> hidden;
   for (const Param& p : pf.params(c)) {
     const char L = p.letter;
-    if (!g10::is_axis_letter(L, s) || g10::axis_visible(s, L) || s.failed_axes.count(L)) continue;
-    if (!cx.in_boot() && g10::any_m584_names(cx.machine, L)) continue;  // a macro may create or show it
-    if (letters.find(g10::axis_name(L)) != std::string::npos) continue;
+    if (!tools::is_axis_letter(L, s) || tools::axis_visible(s, L) || s.failed_axes.count(L)) continue;
+    if (!cx.in_boot() && tools::any_m584_names(cx.machine, L)) continue;  // a macro may create or show it
+    if (letters.find(tools::axis_name(L)) != std::string::npos) continue;
     if (!first) first = p;
     if (!letters.empty()) letters += ", ";
-    letters += g10::axis_name(L);
+    letters += tools::axis_name(L);
     if (s.axis_index(L) >= 0) hidden.push_back(L);
-    else created.emplace_back(L, g10::later_m584_for(cx, L));
+    else created.emplace_back(L, tools::later_m584_for(cx, L));
   }
   if (!first) return;
 
@@ -83,12 +83,12 @@ void check(const NodeContext& cx, Sink& out) {
   else if (created.empty()) why = several ? "axes hidden by 'M584 P'" : "an axis hidden by 'M584 P'";
   else why = "axes that are hidden or do not exist yet";
   Report r = out.report(kMeta, cx.at(first->span),
-                        fmt::format("'{}' sets an offset on {} ({}): G10 looks only at visible axes, so the value "
+                        fmt::format("{} sets an offset on {} ({}): G10 looks only at visible axes, so the value "
                                     "is silently ignored",
-                                    g10::quote(pf, c), letters, why));
+                                    tools::quote(pf, c), letters, why));
   for (char L : hidden)
     if (s.visible_set != kNoNode)
-      r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", g10::axis_name(L)));
+      r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", tools::axis_name(L)));
   NodeId last = kNoNode;
   bool all_later = !created.empty() && hidden.empty();
   for (auto [L, at] : created) {
@@ -96,13 +96,13 @@ void check(const NodeContext& cx, Sink& out) {
       all_later = false;
       continue;
     }
-    r.note(cx.where(at), fmt::format("axis {} is created here", g10::axis_name(L)));
+    r.note(cx.where(at), fmt::format("axis {} is created here", tools::axis_name(L)));
     if (last == kNoNode || at > last) last = at;
   }
   if (!all_later || last == kNoNode) return;
-  const g10::ToolRef t = g10::tool_ref(pf, c, s);
-  if (!t.known || !t.explicit_p || g10::same_tool_between(cx, last, t.number)) return;
-  if (auto fix = g10::move_line_after(cx, last, "move the line after the 'M584' that creates the axis"))
+  const ToolRef t = addressed_tool(pf, c, s);
+  if (!t.known || !t.explicit_p || tools::same_tool_between(cx, last, t.number)) return;
+  if (auto fix = tools::move_line_after(cx, last, "move the line after the 'M584' that creates the axis"))
     r.fix(std::move(*fix));
 }
 

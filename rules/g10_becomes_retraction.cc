@@ -1,5 +1,5 @@
 // RRF303 g10-becomes-retraction: a G10 meant as an offset that RRF runs as firmware retraction.
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -51,35 +51,35 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   if (c.param_count == 0) {
-    if (!cx.in_boot() || g10::in_tool_macro(cx.graph, cx.id)) return;
+    if (!cx.in_boot() || tools::in_tool_macro(cx.graph, cx.id)) return;
     out.report(kMeta, cx.at(c.span),
                "bare 'G10' at boot runs firmware retraction, not a tool-offset command: name the tool and the "
                "axes, e.g. 'G10 P0 X0 Y0 Z0'");
     return;
   }
-  if (g10::classify(pf, c, s) != g10::Form::Retract) return;
+  if (g10_form(pf, c, &s, s.firmware) != G10Form::Retraction) return;
   std::string letters;
   std::vector<char> list;
   for (const Param& p : pf.params(c)) {
-    if (!g10::is_axis_letter(p.letter, s)) continue;
+    if (!tools::is_axis_letter(p.letter, s)) continue;
     if (!letters.empty()) letters += ", ";
-    letters += g10::axis_name(p.letter);
+    letters += tools::axis_name(p.letter);
     list.push_back(p.letter);
   }
   if (list.empty()) return;
   if (!cx.in_boot())
     for (char L : list)
-      if (g10::any_m584_names(cx.machine, L)) return;  // a macro may create or show the axis
+      if (tools::any_m584_names(cx.machine, L)) return;  // a macro may create or show the axis
   Report r = out.report(
       kMeta, cx.at(c.span),
-      fmt::format("'{}' has no L, P, R or S and {} {} here: RRF runs firmware retraction instead of setting a "
+      fmt::format("{} has no L, P, R or S and {} {} here: RRF runs firmware retraction instead of setting a "
                   "tool offset",
-                  g10::quote(pf, c), letters, list.size() > 1 ? "are not visible axes" : "is not a visible axis"));
+                  tools::quote(pf, c), letters, list.size() > 1 ? "are not visible axes" : "is not a visible axis"));
   for (char L : list) {
     if (s.axis_index(L) >= 0) {
-      if (s.visible_set != kNoNode) r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", g10::axis_name(L)));
-    } else if (NodeId at = g10::later_m584_for(cx, L); at != kNoNode) {
-      r.note(cx.where(at), fmt::format("axis {} is created here", g10::axis_name(L)));
+      if (s.visible_set != kNoNode) r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", tools::axis_name(L)));
+    } else if (NodeId at = tools::later_m584_for(cx, L); at != kNoNode) {
+      r.note(cx.where(at), fmt::format("axis {} is created here", tools::axis_name(L)));
     }
   }
 }

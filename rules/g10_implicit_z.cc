@@ -1,5 +1,5 @@
 // RRF331 g10-implicit-z: a tool-offset G10 that leaves Z out where Z is provably 0 (opt-in).
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -50,7 +50,7 @@ keeps its meaning: safe.
 };
 
 void check(const NodeContext& cx, Sink& out) {
-  auto m = g10::missing_z(cx);
+  auto m = tools::missing_z(cx);
   if (!m || !m->z.known || m->z.value != 0 || m->probed) return;
   if (!cx.in_boot()) {
     const NodeId begin = cx.segment().begin;
@@ -58,9 +58,9 @@ void check(const NodeContext& cx, Sink& out) {
     if (m->z.origin != kNoNode && m->z.origin < begin) return;
   }
   out.report(kMeta, cx.at(cx.command().span),
-             fmt::format("'{}' leaves the Z offset of tool {} implicit (it is 0 here): write 'Z0'",
-                         g10::quote(cx.parsed(), cx.command()), m->tool))
-      .fix(g10::append_z(cx, "0"));
+             fmt::format("{} leaves the Z offset of tool {} implicit (it is 0 here): write 'Z0'",
+                         tools::quote(cx.parsed(), cx.command()), m->tool))
+      .fix(tools::append_z(cx, "0"));
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // RRF306 g10-missing-z: a tool-offset G10 without Z where the tool's Z offset may be non-zero.
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -67,15 +67,15 @@ that value into config.g would freeze it.
 /// Is node `id` a G10 that sets Z and no other axis? Configs that keep Z apart from X/Y do it on purpose.
 bool z_only_g10(const NodeContext& cx, NodeId id) {
   if (id == kNoNode) return false;
-  g10::NodeCommand nc = g10::command_at(cx.machine, cx.graph, id);
+  tools::NodeCommand nc = tools::command_at(cx.machine, cx.graph, id);
   if (!nc.is('G', 10) || !nc.pf->find(*nc.c, 'Z')) return false;
   for (const Param& p : nc.pf->params(*nc.c))
-    if (p.letter != 'Z' && g10::is_axis_letter(p.letter, cx.state)) return false;
+    if (p.letter != 'Z' && tools::is_axis_letter(p.letter, cx.state)) return false;
   return true;
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  auto m = g10::missing_z(cx);
+  auto m = tools::missing_z(cx);
   if (!m) return;
   const bool maybe_nonzero = !m->z.known || m->z.value != 0 || m->probed;
   if (!maybe_nonzero) return;
@@ -86,25 +86,25 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   std::string why, value;
   if (m->probed) {
-    const g10::NodeCommand origin = m->z.origin != kNoNode ? g10::command_at(cx.machine, cx.graph, m->z.origin)
-                                                           : g10::NodeCommand{};
+    const tools::NodeCommand origin = m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin)
+                                                           : tools::NodeCommand{};
     why = origin.is('M', 585) ? "the value M585 measured" : "a value loaded from config-override.g";
   } else if (!m->z.known) {
     why = "a value rrflint cannot know";
   } else {
-    g10::NodeCommand origin = m->z.origin != kNoNode ? g10::command_at(cx.machine, cx.graph, m->z.origin)
-                                                     : g10::NodeCommand{};
+    tools::NodeCommand origin = m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin)
+                                                     : tools::NodeCommand{};
     if (origin.is('G', 10))
       if (ParamRef p = origin.pf->find(*origin.c, 'Z'); p && !is_unknown_value(*p) && p->kind == ValueKind::Number)
         value = std::string(origin.pf->text(p->value));
     why = fmt::format("{}", value.empty() ? fmt::format("{:g}", m->z.value) : value);
   }
   Report r = out.report(kMeta, cx.at(c.span),
-                        fmt::format("'{}' sets offsets of tool {} but not Z, so Z keeps its earlier value ({}): "
+                        fmt::format("{} sets offsets of tool {} but not Z, so Z keeps its earlier value ({}): "
                                     "set Z on this line too",
-                                    g10::quote(pf, c), m->tool, why));
+                                    tools::quote(pf, c), m->tool, why));
   if (m->z.origin != kNoNode) r.note(cx.where(m->z.origin), fmt::format("tool {} gets its Z offset here", m->tool));
-  if (!value.empty() && !m->probed) r.fix(g10::append_z(cx, value));
+  if (!value.empty() && !m->probed) r.fix(tools::append_z(cx, value));
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <tuple>
 
 #include "lint/engine/linter.h"
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -71,17 +71,6 @@ On a real tool changer, declare it with `--tool-changer` (or `machine.tool-chang
 )md",
 };
 
-bool is_tool_change_macro(std::string_view sd_path) {
-  const std::string b = g10::base_name(sd_path);
-  if (!b.ends_with(".g")) return false;
-  for (std::string_view k : {"tfree", "tpre", "tpost"}) {
-    if (!b.starts_with(k)) continue;
-    std::string_view rest = std::string_view(b).substr(k.size(), b.size() - k.size() - 2);
-    return std::all_of(rest.begin(), rest.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
-  }
-  return false;
-}
-
 /// Does this tool-change macro show tool-changer work (moves, macro calls, servos)?
 bool changes_tools(const ParsedFile& pf, const MachineState& s) {
   for (const Command& c : pf.commands) {
@@ -89,7 +78,7 @@ bool changes_tools(const ParsedFile& pf, const MachineState& s) {
       if (c.number == 28 || c.number == 30 || c.number == 38 || c.number == 53) return true;
       if (c.number >= 0 && c.number <= 3)
         for (const Param& p : pf.params(c))
-          if (g10::is_axis_letter(p.letter, s)) return true;
+          if (tools::is_axis_letter(p.letter, s)) return true;
     } else if (c.letter == 'M' && (c.number == 98 || c.number == 280 || c.number == 42)) {
       return true;
     }
@@ -104,7 +93,7 @@ bool tool_changer_evidence(const EndContext& cx) {
     if (t.zmap.origin != kNoNode) return true;
   for (uint32_t i = 0; i < cx.machine.unit_count(); ++i) {
     const FileUnit& u = cx.machine.unit(i);
-    if (is_tool_change_macro(u.sd_path) && changes_tools(u.parsed, s)) return true;
+    if (is_tool_change_role(file_role(u.sd_path)) && changes_tools(u.parsed, s)) return true;
   }
   return false;
 }

@@ -1,5 +1,5 @@
 // RRF304 g10-offset-on-unmapped-axis: an X/Y/Z tool offset on an axis the tool's M563 map leaves out.
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -59,8 +59,8 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (g10::classify(pf, c, s) != g10::Form::Tool) return;
-  const g10::ToolRef ref = g10::tool_ref(pf, c, s);
+  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return;
+  const ToolRef ref = addressed_tool(pf, c, s);
   if (!ref.known) return;
   const Tool* t = s.tool(ref.number);
   if (!t || t->maybe) return;
@@ -84,18 +84,18 @@ void check(const NodeContext& cx, Sink& out) {
     const bool zero = v.value == 0;
     if (zero && sets_mapped) continue;
     std::string msg =
-        zero ? fmt::format("'{}' sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; "
+        zero ? fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; "
                            "a calibrated value belongs on {}",
-                           g10::quote(pf, c), L, ref.number, L, mapped, mapped)
-             : fmt::format("'{}' sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, "
+                           tools::quote(pf, c), L, ref.number, L, mapped, mapped)
+             : fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, "
                            "it applies the {} offset instead",
-                           g10::quote(pf, c), L, ref.number, L, mapped, mapped);
+                           tools::quote(pf, c), L, ref.number, L, mapped, mapped);
     Report r = out.report(kMeta, zero ? Severity::Info : kMeta.severity, cx.at(v.param->span), std::move(msg));
     r.note(cx.where(map->origin), fmt::format("{} of tool {} is mapped to {} here", L, ref.number, mapped));
     if (count == 1 && !sets_mapped && single < static_cast<int>(s.axes.size())) {
       const char to = s.axes[static_cast<size_t>(single)].letter;
-      r.fix(Fix::unsafe(fmt::format("use {} instead of {}", g10::axis_name(to), L),
-                        Edit::replace(cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), g10::axis_name(to))));
+      r.fix(Fix::unsafe(fmt::format("use {} instead of {}", tools::axis_name(to), L),
+                        Edit::replace(cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), tools::axis_name(to))));
     }
   }
 }

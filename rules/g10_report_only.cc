@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -48,15 +48,7 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   auto P = get_int(pf, c, 'P');
-  if (P.absent()) return;
-  for (const Param& p : pf.params(c)) {
-    if (p.letter == 'P') continue;
-    if (p.letter == 'L') {
-      auto L = get_int(pf, c, 'L');
-      if (L.known() && L.value == 1) continue;
-    }
-    return;
-  }
+  if (P.absent() || g10_form(pf, c, &cx.state, cx.state.firmware) != G10Form::Report) return;
   const std::string tool = P.known() ? fmt::format("tool {}", P.value) : "the tool";
   out.report(kMeta, cx.at(c.span),
              fmt::format("{} sets nothing: with no axis letter and no 'R' or 'S' it only reports {}'s offsets and "

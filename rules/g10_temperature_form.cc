@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -101,13 +101,13 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
 void check(const FileContext& cx, Sink& out) {
   if (cx.target.version < kRrf3_3) return;
   // resurrect.g is written by the firmware (with G10 up to 3.4, with M568 from 3.5), not by the user.
-  if (to_lower(cx.unit.sd_path).ends_with("/resurrect.g")) return;
+  if (file_role(cx.unit.sd_path) == FileRole::Resurrect) return;
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('G', 10)) {
     const Command& c = pf.commands[ci];
     if (!c.is('G', 10)) continue;
     if (!pf.find(c, 'R') && !pf.find(c, 'S')) continue;
-    if (tools::g10_form(pf, c, nullptr, cx.target.version) != tools::G10Form::Tool) continue;
+    if (g10_form(pf, c, nullptr, cx.target.version) != G10Form::Tool) continue;
     auto P = get_int(pf, c, 'P');
     const std::string tool = P.present() ? fmt::format("tool {}", pf.text(P.param->value)) : "the current tool";
     Report r = out.report(kMeta, cx.at(c.span),

@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {

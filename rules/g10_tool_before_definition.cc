@@ -1,5 +1,5 @@
 // RRF301 g10-tool-before-definition: a tool-form G10 for a tool that does not exist (yet).
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -62,7 +62,7 @@ bool any_m563_could_create(const Machine& m, int n) {
     const ParsedFile& pf = m.unit(i).parsed;
     for (const uint32_t ci : pf.with_code('M', 563)) {
       const Command& c = pf.commands[ci];
-      if (!c.is('M', 563) || !g10::m563_defines(pf, c)) continue;
+      if (!c.is('M', 563) || !m563_defines(pf, c)) continue;
       auto P = get_int(pf, c, 'P');
       if (!P.known() || P.value == n) return true;
     }
@@ -75,28 +75,29 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (g10::classify(pf, c, s) != g10::Form::Tool) return;
+  if (!is_tool_form(g10_form(pf, c, &s, s.firmware))) return;
   auto P = get_int(pf, c, 'P');
   if (!P.known() || P.value < 0) return;
   const int n = static_cast<int>(P.value);
   if (!s.tool_certainly_absent(n) || s.failed_tools.count(n)) return;
-  if (g10::is_tool_macro_for(cx.unit().sd_path, n)) return;
+  int macro_tool = -1;  // tool n's own change macros run only for a tool that exists
+  if (is_tool_change_role(file_role(cx.unit().sd_path, &macro_tool)) && macro_tool == n) return;
   if (!cx.in_boot() && any_m563_could_create(cx.machine, n)) return;  // a macro may create it at run time
 
-  const NodeId later = g10::later_m563(cx, n);
-  const std::string what = g10::quote_with_p(pf, c);
-  const std::string answer = g10::invalid_tool_text(s.firmware, n);
+  const NodeId later = tools::later_m563(cx, n);
+  const std::string what = tools::quote(pf, c);
+  const std::string answer = tools::invalid_tool_text(s.firmware, n);
   std::string msg =
       later != kNoNode
-          ? fmt::format("'{}' names tool {}, which does not exist yet: RRF answers '{}' and sets nothing", what, n,
+          ? fmt::format("{} names tool {}, which does not exist yet: RRF answers '{}' and sets nothing", what, n,
                         answer)
-          : fmt::format("'{}' names tool {}, which is never created: RRF answers '{}' and sets nothing", what, n,
+          : fmt::format("{} names tool {}, which is never created: RRF answers '{}' and sets nothing", what, n,
                         answer);
   Report r = out.report(kMeta, cx.at(c.span), std::move(msg));
   if (later == kNoNode) return;
   r.note(cx.where(later), fmt::format("tool {} is created here", n));
-  if (g10::same_tool_between(cx, later, n)) return;  // that line moves first; this one follows in the next round
-  if (auto fix = g10::move_line_after(cx, later, fmt::format("move the line after the 'M563 P{}'", n)))
+  if (tools::same_tool_between(cx, later, n)) return;  // that line moves first; this one follows in the next round
+  if (auto fix = tools::move_line_after(cx, later, fmt::format("move the line after the 'M563 P{}'", n)))
     r.fix(std::move(*fix));
 }
 

@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -50,9 +50,10 @@ void check(const FileContext& cx, Sink& out) {
   for (const uint32_t ci : pf.with_code('G', 10)) {
     const Command& c = pf.commands[ci];
     if (!c.is('G', 10)) continue;
+    const G10Form form = g10_form(pf, c, nullptr, fw);
+    if (form != G10Form::BadL && form != G10Form::Workplace) continue;
     auto L = get_int(pf, c, 'L');
-    if (!L.known()) continue;
-    if (L.value != 1 && L.value != 2 && L.value != 20) {
+    if (form == G10Form::BadL) {
       out.report(kMeta, cx.at(L.param->span),
                  fmt::format("{} uses 'L{}': G10 knows only L1 (tool offsets), L2 and L20 (workplace origins), so RRF "
                              "{} and sets nothing",
@@ -60,7 +61,6 @@ void check(const FileContext& cx, Sink& out) {
                              L.value < 0 ? "rejects the negative value" : "answers 'Bad or missing parameter'"));
       continue;
     }
-    if (L.value == 1) continue;
     auto P = get_int(pf, c, 'P');
     if (!P.known()) continue;
     const bool bad = P.value < 0 || P.value > 9 || (!limited && P.value == 0);

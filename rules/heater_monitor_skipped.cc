@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/g10_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -47,7 +47,7 @@ M563 P0 D0 H1
 )md",
 };
 
-bool names_heater(const g10::NodeCommand& k, int h) {
+bool names_heater(const tools::NodeCommand& k, int h) {
   const Command& c = *k.c;
   if (c.letter != 'M' || c.fraction >= 0) return false;
   if (c.number != 563 && c.number != 140 && c.number != 141) return false;
@@ -74,7 +74,7 @@ void check(const NodeContext& cx, Sink& out) {
     bool unknown = false;
     const NodeId create = cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId, const Node& n) {
       if (n.kind != NodeKind::Command) return false;
-      const g10::NodeCommand k = g10::command_at(cx.machine, n);
+      const tools::NodeCommand k = tools::command_at(cx.machine, n);
       if (!k.c->is('M', 950)) return false;
       auto v = get_int(*k.pf, *k.c, 'H');
       unknown = v.unknown();  // some heater is created from an expression: cannot tell
@@ -85,7 +85,7 @@ void check(const NodeContext& cx, Sink& out) {
     bool model = false;
     const bool closed = cx.graph.nodes.find_if(create + 1, seg.end, [&](NodeId, const Node& n) {
       if (n.kind != NodeKind::Command) return false;
-      const g10::NodeCommand k = g10::command_at(cx.machine, n);
+      const tools::NodeCommand k = tools::command_at(cx.machine, n);
       const Command& kc = *k.c;
       if (kc.letter != 'M' || kc.fraction >= 0) return false;
       if (kc.number == 143) {

@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -65,12 +65,8 @@ void check(const NodeContext& cx, Sink& out) {
   }
   if (homed_before(cx)) return;
   // The first visible axis letter is the one M585 probes.
-  std::string reply = "No axis specified";
-  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()); ++i)
-    if (pf.find(c, s.axes[static_cast<size_t>(i)].letter)) {
-      reply = tools::axis_name(s, i) + " axis has not been homed";
-      break;
-    }
+  const int axis = m585_axis(pf, c, s);
+  const std::string reply = axis < 0 ? "No axis specified" : tools::axis_name(s, axis) + " axis has not been homed";
   Report r = out.report(kMeta, cx.at(c.span),
                         fmt::format("{} probes a tool offset at boot, but nothing is homed yet: RRF answers '{}' and "
                                     "measures nothing",

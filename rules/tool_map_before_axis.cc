@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -66,7 +66,7 @@ std::string existing_axes(const MachineState& s, int count) {
   return out;
 }
 
-void check_map(const NodeContext& cx, const tools::ToolMap& m, int tool, Sink& out) {
+void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
   const MachineState& s = cx.state;
   const ParsedFile& pf = cx.parsed();
   for (int64_t i : m.indices) {
@@ -99,10 +99,10 @@ void check_map(const NodeContext& cx, const tools::ToolMap& m, int tool, Sink& o
       // Look ahead for the M584 that creates enough axes.
       std::string letters;
       for (const Axis& a : s.axes) letters += a.letter;
-      NodeId later = tools::find_later(cx, [&](const ParsedFile& opf, const Command& oc, const Node& nd) {
-        if (!oc.is('M', 584) || nd.maybe) return false;
+      NodeId later = tools::find_later(cx, 'M', 584, [&](const tools::NodeCommand& nc) {
+        if (nc.node->maybe) return false;
         for (char L : allowed_axis_letters())
-          if (letters.find(L) == std::string::npos && opf.find(oc, L)) letters += L;
+          if (letters.find(L) == std::string::npos && nc.pf->find(*nc.c, L)) letters += L;
         return letters.size() > static_cast<size_t>(idx);
       });
       if (later != kNoNode) r.note(cx.where(later), fmt::format("axis index {} is created later, here", idx));
@@ -121,8 +121,8 @@ void check(const NodeContext& cx, Sink& out) {
   auto P = get_int(pf, c, 'P');
   const int tool = P.known() ? static_cast<int>(P.value) : -1;
   for (char L : {'X', 'Y', 'Z'}) {
-    if (L == 'Z' && !tools::has_z_map(s.firmware)) continue;
-    const tools::ToolMap m = tools::tool_map(pf, c, s, L);
+    if (L == 'Z' && !has_z_map(s.firmware)) continue;
+    const M563Map m = m563_map(pf, c, s, L);
     if (!m.given || !m.known) continue;
     check_map(cx, m, tool, out);
   }

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -65,8 +65,8 @@ void check(const NodeContext& cx, Sink& out) {
   for (const Axis& a : s.axes) standard.push_back(a.letter);
   std::stable_sort(standard.begin(), standard.end(), [&](char a, char b) { return order.find(a) < order.find(b); });
   for (char L : {'X', 'Y', 'Z'}) {
-    if (L == 'Z' && !tools::has_z_map(s.firmware)) continue;
-    const tools::ToolMap m = tools::tool_map(pf, c, s, L);
+    if (L == 'Z' && !has_z_map(s.firmware)) continue;
+    const M563Map m = m563_map(pf, c, s, L);
     if (!m.given || !m.known) continue;
     for (int64_t i : m.indices) {
       if (i < 0 || i >= s.visible_axes || i >= static_cast<int64_t>(s.axes.size())) continue;

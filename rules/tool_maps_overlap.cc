@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -45,7 +45,7 @@ M563 P2 D1 X0:3
 )md",
 };
 
-std::string describe(const MachineState& s, const tools::ToolMap& m) {
+std::string describe(const MachineState& s, const M563Map& m) {
   return fmt::format("{} → {}{}", m.letter, s.axis_letters(m.bits), m.given ? "" : " (its default, since it is not given)");
 }
 
@@ -56,11 +56,11 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   bool any = false;
-  for (char L : {'X', 'Y', 'Z'}) any = any || (pf.find(c, L) && (L != 'Z' || tools::has_z_map(s.firmware)));
+  for (char L : {'X', 'Y', 'Z'}) any = any || (pf.find(c, L) && (L != 'Z' || has_z_map(s.firmware)));
   if (!any) return;  // all defaults: they never overlap
-  const bool z = tools::has_z_map(s.firmware);
-  const tools::ToolMap maps[3] = {tools::tool_map(pf, c, s, 'X'), tools::tool_map(pf, c, s, 'Y'),
-                                  z ? tools::tool_map(pf, c, s, 'Z') : tools::ToolMap{}};
+  const bool z = has_z_map(s.firmware);
+  const M563Map maps[3] = {m563_map(pf, c, s, 'X'), m563_map(pf, c, s, 'Y'),
+                                  z ? m563_map(pf, c, s, 'Z') : M563Map{}};
   for (const auto& m : maps)
     if (!m.known) return;
   for (int a = 0; a < 3; ++a) {
@@ -70,7 +70,7 @@ void check(const NodeContext& cx, Sink& out) {
       if (!shared) continue;
       const std::string reply = z ? "Cannot map two or more of X,Y,Z to the same axis"
                                   : "Cannot map both X and Y to the same axis";
-      const tools::ToolMap& given = maps[a].given ? maps[a] : maps[b];
+      const M563Map& given = maps[a].given ? maps[a] : maps[b];
       out.report(kMeta, cx.at(given.param ? given.param->span : c.span),
                  fmt::format("{} maps both {} and {} to {} ({}; {}): RRF answers '{}' and does not create the tool",
                              tools::quote(pf, c), maps[a].letter, maps[b].letter, s.axis_letters(shared),

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -53,16 +53,10 @@ G10 P0 X10 Y5 Z0
 )md",
 };
 
-bool defining(const ParsedFile& pf, const Command& c) {
-  for (char L : {'S', 'D', 'H', 'X', 'Y', 'Z', 'F', 'R'})
-    if (pf.find(c, L)) return true;
-  return false;
-}
-
 /// Would RRF reject this M563 before deleting the old tool (overlapping maps, docs/firmware-behaviour.md#m563-tools)?
 bool rejected_early(const ParsedFile& pf, const Command& c, const MachineState& s) {
-  const auto x = tools::tool_map(pf, c, s, 'X'), y = tools::tool_map(pf, c, s, 'Y');
-  const auto z = tools::has_z_map(s.firmware) ? tools::tool_map(pf, c, s, 'Z') : tools::ToolMap{'Z', false, true, 0};
+  const auto x = m563_map(pf, c, s, 'X'), y = m563_map(pf, c, s, 'Y');
+  const auto z = has_z_map(s.firmware) ? m563_map(pf, c, s, 'Z') : M563Map{'Z', false, true, 0};
   if (!x.known || !y.known || !z.known) return true;  // cannot tell: stay silent
   return (x.bits & y.bits) || (x.bits & z.bits) || (y.bits & z.bits);
 }
@@ -73,12 +67,12 @@ struct Lost {
 };
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is('M', 563) || cx.runs < 2) return;
+  if (!cx.is('M', 563) || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   auto P = get_int(pf, c, 'P');
-  if (!P.known() || !defining(pf, c)) return;
+  if (!P.known() || !m563_defines(pf, c)) return;
   const int n = static_cast<int>(P.value);
   const Tool* t = s.tool(n);
   if (!t || t->maybe || s.unknown_baseline || rejected_early(pf, c, s)) return;

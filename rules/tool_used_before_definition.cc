@@ -2,8 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/g10_common.h"
-#include "rules/tool_common.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -95,8 +94,8 @@ void check(const NodeContext& cx, Sink& out) {
   }
   if (!s.tool_certainly_absent(n) || s.failed_tools.count(n)) return;
   // resurrect.g is written by the firmware from the machine as it was at the pause or power failure.
-  if (to_lower(cx.unit().sd_path).ends_with("/resurrect.g")) return;
-  const NodeId later = cx.in_boot() ? g10::later_m563(cx, n) : kNoNode;
+  if (file_role(cx.unit().sd_path) == FileRole::Resurrect) return;
+  const NodeId later = cx.in_boot() ? tools::later_m563(cx, n) : kNoNode;
   if (!cx.in_boot() && created_anywhere(cx.machine, n)) return;
   // `T99` for a tool that nothing creates, beyond the 0–49 range, is the old way to deselect every tool.
   if (c.letter == 'T' && n >= 50 && later == kNoNode && !created_anywhere(cx.machine, n)) return;

@@ -389,7 +389,7 @@ TEST_CASE("a file rule that reads the machine is marked whole_card", "[fixtures]
     REQUIRE_FALSE(text.empty());
     // The check itself names the machine, or hands its FileContext to a shared helper that does.
     bool reads = text.find("machine.") != std::string::npos;
-    for (const char* h : {"lex_common.h", "g10_common.h", "tool_common.h", "macro_common.h"})
+    for (const char* h : {"lex_common.h", "tool_helpers.h", "macro_common.h"})
       if (text.find(h) != std::string::npos) {
         const std::string header = read(dir / h);
         for (size_t at = header.find("FileContext& cx"); at != std::string::npos; at = header.find("FileContext& cx", at + 1))

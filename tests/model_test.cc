@@ -338,3 +338,31 @@ TEST_CASE("infer: a given version and board win", "[model][infer]") {
   CHECK(header->result.target.version == Version(3, 5, 4));
   CHECK(config("; Duet 2 WiFi\nM83\n", std::nullopt)->result.target.board == Board::Duet2);
 }
+
+TEST_CASE("model: a G10 whose form is unknown sets nothing certain, and no rule fires on it", "[model][commands]") {
+  // After a macro whose name is an expression the axes are unknown: 'G10 X1' may set a tool offset, or X may be
+  // hidden and it is a retraction.
+  auto r = config(
+      "M563 P0 S\"a\"\n"
+      "T0 P0\n"
+      "M98 P{\"x\" ^ \".g\"}\n"
+      "G10 X1 Z0\n"
+      "G10 L{global.l} Z2\n");
+  CHECK_FALSE(r->end().axes_known);
+  const Tool& t = r->tool(0);
+  CHECK_FALSE(t.offsets[0].known);  // it may have set X
+  CHECK_FALSE(t.offsets[2].known);
+  CHECK(r->word(t.offsets[2].origin) == "G10 L{global.l} Z2");
+
+  // The same lines lint silently: no G10 rule fires on a G10 of unknown form.
+  SourceManager sources;
+  MemoryReader reader;
+  reader.add("/sys/config.g", "M563 P0 S\"a\"\nT0 P0\nM98 P{\"x\" ^ \".g\"}\nG10 X1 U3\nG10 U3\n");
+  LintOptions o;
+  o.select = {"ALL"};
+  const MachineResult res = lint_machine(sources, reader, builtin_rules(), o);
+  for (const Diagnostic& d : res.diagnostics) {
+    INFO(d.message);
+    CHECK(std::string(d.name).rfind("g10-", 0) != 0);
+  }
+}

@@ -76,10 +76,6 @@ struct NodeContext {
   const Segment& segment() const;
 };
 
-/// Transitional, for the `cx.runs < 2` still in rules/g10_common.h, rules/tool_common.h and rules/tool_redefined.cc
-/// (being merged into a semantics module): `runs < 2` is `!certain()`. Remove once they use cx.certain().
-constexpr bool operator<(Runs r, int n) { return static_cast<int>(r) < n; }
-
 /// What an end-of-machine rule sees.
 struct EndContext {
   const Machine& machine;

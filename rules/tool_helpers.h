@@ -1,5 +1,7 @@
-// Helpers shared by the G10 and tool rules (RRF202, RRF301–RRF306, RRF331): how RRF dispatches a G10, which
-// tool it names, look-ahead in the command graph, and the "move this line after that one" fix.
+// Helpers shared by the G10, tool and temperature rules (RRF202, RRF301–RRF331): look-ahead in the command graph,
+// the "move this line after that one" fix, and how a command is quoted in a message. What RRF makes of a command
+// (G10's form, whether an M563 defines a tool and its X/Y/Z maps, the tool a command addresses, a file's role) is
+// decided in lint/boot/commands.h, never here.
 #pragma once
 
 #include <fmt/format.h>
@@ -7,19 +9,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "lint/boot/commands.h"
 #include "lint/engine/rule.h"
 
-namespace rrflint::g10 {
-
-/// The form RRF gives a G10 (docs/firmware-behaviour.md#g10-forms; GCodes2.cpp case 10).
-enum class Form : uint8_t {
-  Tool,       // tool offsets/temperatures (L1, or P/R/S/a visible axis letter)
-  Workplace,  // L2 / L20
-  Retract,    // none of the above: firmware retraction
-  BadL,       // another L: `Bad or missing parameter`
-  Unknown,    // L from an expression, or axes not known
-};
+namespace rrflint::tools {
 
 /// Is `letter` an axis letter on this target, whether or not the axis exists?
 inline bool is_axis_letter(char letter, const MachineState& s) {
@@ -27,52 +22,28 @@ inline bool is_axis_letter(char letter, const MachineState& s) {
     const char hi = highest_lowercase_axis(s.board, s.firmware);
     return hi != 0 && letter <= hi;
   }
-  const std::string_view upper = s.firmware < Version(3, 0, 0, 0, 0) ? "XYZUVWABC" : "XYZUVWABCD";
+  const std::string_view upper = s.firmware < kRrf3_0 ? "XYZUVWABC" : "XYZUVWABCD";
   return letter != 0 && upper.find(letter) != std::string_view::npos;
 }
-
-inline bool axis_visible(const MachineState& s, char letter) { return s.axis_visible(s.axis_index(letter)); }
 
 /// "U" or "'a", as the letter is written in a command.
 inline std::string axis_name(char letter) {
   return letter >= 'a' && letter <= 'z' ? std::string("'") + letter : std::string(1, letter);
 }
 
-inline Form classify(const ParsedFile& pf, const Command& c, const MachineState& s) {
-  auto L = get_int(pf, c, 'L');
-  if (L.present()) {
-    if (!L.known()) return Form::Unknown;
-    if (L.value == 1) return Form::Tool;
-    if (L.value == 2 || L.value == 20) return Form::Workplace;
-    return Form::BadL;
-  }
-  if (pf.find(c, 'P') || pf.find(c, 'R') || pf.find(c, 'S')) return Form::Tool;
-  if (s.firmware >= Version(3, 3, 0, 0, 0) && s.firmware < Version(3, 5, 0, 0, 0) && pf.find(c, 'F'))
-    return Form::Tool;  // 3.3–3.4.x count F as well
-  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()); ++i)
-    if (pf.find(c, s.axes[static_cast<size_t>(i)].letter)) return Form::Tool;
-  if (!s.axes_known || s.unknown_baseline) return Form::Unknown;
-  return Form::Retract;
+/// The letter of axis index i ("U", "'a"), or "#i" for an index with no axis, for messages.
+inline std::string axis_name(const MachineState& s, int i) {
+  if (i < 0 || i >= static_cast<int>(s.axes.size())) return fmt::format("#{}", i);
+  return axis_name(s.axes[static_cast<size_t>(i)].letter);
 }
 
-/// The tool a G10/M568 acts on: P, or the current tool.
-struct ToolRef {
-  int number = -1;
-  bool known = false;
-  bool explicit_p = false;
-};
-
-inline ToolRef tool_ref(const ParsedFile& pf, const Command& c, const MachineState& s) {
-  auto P = get_int(pf, c, 'P');
-  if (P.known()) return {static_cast<int>(P.value), true, true};
-  if (P.present()) return {-1, false, true};
-  return {s.current_tool, s.current_tool_known && !s.unknown_baseline, false};
-}
+inline bool axis_visible(const MachineState& s, char letter) { return s.axis_visible(s.axis_index(letter)); }
 
 /// The command of a graph node, or nullptr for Enter/Leave/ToolSelect nodes.
 struct NodeCommand {
   const ParsedFile* pf = nullptr;
   std::optional<Command> c;
+  const Node* node = nullptr;
   explicit operator bool() const { return c.has_value(); }
   bool is(char letter, int number) const { return c && c->letter == letter && c->number == number && c->fraction < 0; }
 };
@@ -80,16 +51,9 @@ struct NodeCommand {
 inline NodeCommand command_at(const Machine& m, const Node& n) {
   if (n.kind != NodeKind::Command) return {};
   const ParsedFile& pf = m.unit(n.unit).parsed;
-  return {&pf, pf.commands[n.index]};
+  return {&pf, pf.commands[n.index], &n};
 }
 inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) { return command_at(m, g.nodes[id]); }
-
-/// Does this M563 define (create or re-create) a tool, rather than report one?
-inline bool m563_defines(const ParsedFile& pf, const Command& c) {
-  for (char L : {'S', 'D', 'H', 'X', 'Y', 'Z', 'F', 'R'})
-    if (pf.find(c, L)) return true;
-  return false;
-}
 
 /// The first command node after this one in its segment with code `letter` `number` (no fraction) for which
 /// `pred(command)` holds; kNoNode if none. Other commands are passed over on their code alone.
@@ -99,7 +63,7 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
     if (n.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const CommandTable::Code code = pf.commands.code(n.index);
-    return code.letter == letter && code.number == number && code.fraction < 0 && pred(NodeCommand{&pf, pf.commands[n.index]});
+    return code.letter == letter && code.number == number && code.fraction < 0 && pred(NodeCommand{&pf, pf.commands[n.index], &n});
   });
 }
 
@@ -138,47 +102,21 @@ inline bool in_tool_macro(const Graph& g, NodeId id) {
   return false;
 }
 
-/// The lower-cased file name of an SD path ("/sys/tpost0.g" -> "tpost0.g").
-inline std::string base_name(std::string_view sd_path) {
-  const size_t slash = sd_path.rfind('/');
-  return to_lower(sd_path.substr(slash == std::string_view::npos ? 0 : slash + 1));
-}
-
-/// Is this file one of tool n's change macros (tfree<n>.g, tpre<n>.g, tpost<n>.g)? They run only for a tool
-/// that exists.
-inline bool is_tool_macro_for(std::string_view sd_path, int n) {
-  const std::string b = base_name(sd_path), num = std::to_string(n) + ".g";
-  return b == "tfree" + num || b == "tpre" + num || b == "tpost" + num;
-}
-
-/// RRF's answer to a G10 for a tool that does not exist, by version (docs/firmware-behaviour.md#g10-forms).
+/// RRF's answer to a G10 for a tool that does not exist (docs/firmware-behaviour.md#g10-forms).
 inline std::string invalid_tool_text(Version v, int n) {
-  if (v >= Version(3, 4, 0, 0, 0)) return "Invalid tool number";
-  if (v >= Version(3, 3, 0, 0, 0)) return fmt::format("Tool {} not found", n);
+  if (v >= kRrf3_4) return "Invalid tool number";
+  if (v >= kRrf3_3) return fmt::format("Tool {} not found", n);
   return fmt::format("Attempt to set/report offsets and temperatures for non-existent tool: {}", n);
 }
 
-/// A command as quoted in a message: the word and its first parameters, "…" when there are more.
-inline std::string quote(const ParsedFile& pf, const Command& c, uint32_t max_params = 3) {
-  std::string out(pf.text(c.word));
-  uint32_t shown = 0;
-  for (auto p = pf.params(c).begin(); p != ParamRange::iterator(); ++p) {
-    if (shown == max_params) {
-      out += " …";
-      break;
-    }
-    out += ' ';
-    out += pf.text(p->span);
-    ++shown;
-  }
-  return out;
-}
-
-/// "G10 P3": the command word and its P parameter.
-inline std::string quote_with_p(const ParsedFile& pf, const Command& c) {
-  std::string out(pf.text(c.word));
-  if (ParamRef p = pf.find(c, 'P')) out += " " + std::string(pf.text(p->span));
-  return out;
+/// A command as written, quoted for a message: 'G10 P0 X0 Y0 Z0'; long commands are cut after a few parameters
+/// and end in "…". The one way rules quote a command.
+inline std::string quote(const ParsedFile& pf, const Command& c) {
+  std::string_view t = pf.text(c.span);
+  if (t.size() <= 40) return fmt::format("'{}'", t);
+  size_t cut = t.rfind(' ', 36);
+  if (cut == std::string_view::npos || cut < pf.text(c.word).size()) cut = 36;
+  return fmt::format("'{} …'", t.substr(0, cut));
 }
 
 /// Is there a G10, M563 or M568 for tool n (or an unknown tool) between the command at `cx` and node `to`? Then
@@ -216,18 +154,72 @@ inline std::optional<Fix> move_line_after(const NodeContext& cx, NodeId target, 
   const std::string_view fterm = src.terminator(from), tterm = src.terminator(to);
   if (fterm.empty()) return std::nullopt;
   const std::string line(src.slice(fl));
-  Fix fix;
-  fix.title = std::move(title);
-  fix.applicability = Applicability::Unsafe;
   const FileId f = src.id();
-  fix.edits.push_back(Edit{Location{f, Span{fl.begin, fl.end + static_cast<uint32_t>(fterm.size())}}, ""});
+  Fix fix = Fix::unsafe(std::move(title),
+                        Edit::remove(Location{f, Span{fl.begin, fl.end + static_cast<uint32_t>(fterm.size())}}));
   if (tterm.empty()) {
-    fix.edits.push_back(Edit{Location{f, Span{tls.end, tls.end}}, std::string(fterm) + line});
+    fix.edits.push_back(Edit::insert(Location{f, Span{tls.end, tls.end}}, std::string(fterm) + line));
   } else {
     const uint32_t at = tls.end + static_cast<uint32_t>(tterm.size());
-    fix.edits.push_back(Edit{Location{f, Span{at, at}}, line + std::string(fterm)});
+    fix.edits.push_back(Edit::insert(Location{f, Span{at, at}}, line + std::string(fterm)));
   }
   return fix;
+}
+
+/// Is this command a G10 in tool form or an M568 that sets tool settings (3.3+)?
+inline bool sets_tool_settings(const ParsedFile& pf, const Command& c, const MachineState& s) {
+  if (c.is('G', 10)) return g10_form(pf, c, &s, s.firmware) == G10Form::Tool;
+  return c.is('M', 568) && s.firmware >= kRrf3_3;
+}
+
+/// A tool that certainly exists, with certain heaters, or nullptr.
+inline const Tool* certain_tool(const MachineState& s, int n) {
+  const Tool* t = s.tool(n);
+  return t && !t->maybe && t->heaters_known && !s.unknown_baseline ? t : nullptr;
+}
+
+/// The tool whose temperatures a G10/M568 at this node sets, when the command certainly runs, sets R or S,
+/// and names a tool that certainly exists; nullptr otherwise.
+inline const Tool* temperature_tool(const NodeContext& cx) {
+  if (!cx.is_command() || !cx.certain()) return nullptr;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  if (!sets_tool_settings(pf, c, cx.state)) return nullptr;
+  if (!pf.find(c, 'R') && !pf.find(c, 'S')) return nullptr;
+  const ToolRef ref = addressed_tool(pf, c, cx.state);
+  if (!ref.known || ref.number < 0) return nullptr;
+  return certain_tool(cx.state, ref.number);
+}
+
+/// Heater numbers of a tool, without the `-1` of `H-1`.
+inline std::vector<int> real_heaters(const Tool& t) {
+  std::vector<int> out;
+  for (int64_t h : t.heaters)
+    if (h >= 0) out.push_back(static_cast<int>(h));
+  return out;
+}
+
+/// Are all axes certain: no M584 we could not read, none created inside a conditional block?
+inline bool axes_certain(const MachineState& s) {
+  if (!s.axes_known || s.unknown_baseline) return false;
+  for (const Axis& a : s.axes)
+    if (a.maybe) return false;
+  return true;
+}
+
+/// Formats a temperature without needless decimals: 285, 212.5.
+inline std::string degrees(double v) {
+  std::string s = fmt::format("{:.1f}", v);
+  if (s.ends_with(".0")) s.resize(s.size() - 2);
+  return s + " °C";
+}
+
+/// Is node `id` part of a run of config-override.g (M501), directly or through M98?
+inline bool inside_m501(const Graph& g, NodeId id) {
+  if (id == kNoNode) return false;
+  for (NodeId e = g.nodes[id].kind == NodeKind::Enter ? id : g.nodes[id].enter; e != kNoNode; e = g.nodes[e].enter)
+    if (g.nodes[e].call == CallKind::M501) return true;
+  return false;
 }
 
 /// A tool-offset G10 that sets other axes but not Z (RRF306, RRF331): the tool and its Z offset before the line.
@@ -252,7 +244,7 @@ inline bool z_set_later(const NodeContext& cx, int n) {
   bool set = false;
   cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId i, const Node& node) {
     if (node.kind == NodeKind::ToolSelect)
-      return node.index == static_cast<uint32_t>(n) || (node.index == UINT32_MAX && !is_deselect(cx.machine, cx.graph, i));
+      return node.index == static_cast<uint32_t>(n) || (node.index == kNoToolNumber && !is_deselect(cx.machine, cx.graph, i));
     if (node.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
     const CommandTable::Code code = pf.commands.code(node.index);
@@ -264,8 +256,8 @@ inline bool z_set_later(const NodeContext& cx, int n) {
     const bool this_tool = P.present() && (!P.known() || P.value == n);  // an unknown P may be this tool
     if (m563 && m563_defines(pf, c) && this_tool) set = true;
     if (g10 && this_tool && pf.find(c, 'Z')) {
-      auto L = get_int(pf, c, 'L');
-      if (!L.present() || !L.known() || L.value == 1) set = true;
+      const G10Form f = g10_form(pf, c, nullptr, cx.state.firmware);  // P is present: never Unknown for axes
+      if (f == G10Form::Tool || f == G10Form::Unknown) set = true;
     }
     return set;
   });
@@ -273,13 +265,13 @@ inline bool z_set_later(const NodeContext& cx, int n) {
 }
 
 inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
-  if (!cx.is('G', 10) || cx.runs < 2) return std::nullopt;
+  if (!cx.is('G', 10) || !cx.certain()) return std::nullopt;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   if (s.running_m501) return std::nullopt;  // config-override.g: M500 writes only the probed axes, on purpose
-  if (classify(pf, c, s) != Form::Tool) return std::nullopt;
-  const ToolRef ref = tool_ref(pf, c, s);
+  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return std::nullopt;
+  const ToolRef ref = addressed_tool(pf, c, s);
   if (!ref.known || ref.number < 0) return std::nullopt;
   const Tool* t = s.tool(ref.number);
   if (!t || t->maybe) return std::nullopt;
@@ -299,12 +291,8 @@ inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
 
 /// The fix that appends ` Z<value>` to the G10 at `cx`, right after its last parameter.
 inline Fix append_z(const NodeContext& cx, const std::string& value) {
-  Fix fix;
-  fix.title = fmt::format("append 'Z{}'", value);
-  fix.applicability = Applicability::Safe;
   const uint32_t end = cx.command().span.end;
-  fix.edits.push_back(Edit{cx.at(Span{end, end}), " Z" + value});
-  return fix;
+  return Fix::safe(fmt::format("append 'Z{}'", value), Edit::insert(cx.at(Span{end, end}), " Z" + value));
 }
 
-}  // namespace rrflint::g10
+}  // namespace rrflint::tools

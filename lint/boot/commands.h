@@ -1,0 +1,101 @@
+// What RRF makes of a command, decided in one place: the machine model (lint/boot/model.cc) and every rule ask
+// here, so that two readings of the same line can never disagree.
+//
+// - which form a G10 takes (tool offsets, a report, workplace origins, firmware retraction, a bad L);
+// - whether an M563 defines a tool or only reports one, and its X/Y/Z axis maps;
+// - the tool a G10 / M568 / M567 addresses (its P, or the current tool);
+// - the role the firmware gives a file by its name (config.g, config-override.g, tpre<n>.g, homeall.g, …).
+//
+// The unknown-values rule holds throughout: where the answer depends on something the model does not know (an
+// expression, the axes after an unreadable M584, a lone macro's unknown baseline), the answer is Unknown, and
+// rules stay silent on it.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "lint/boot/model.h"
+
+namespace rrflint {
+
+/// The form RRF gives a G10 (docs/firmware-behaviour.md#g10-forms; GCodes2.cpp case 10).
+enum class G10Form : uint8_t {
+  Tool,        // tool offsets and/or temperatures: L1, or (no L) P, R, S, F on 3.3–3.4, or a visible axis letter
+  Report,      // the tool form with nothing to set: only P and L1 (`G10 P0`), which reports the tool's settings
+  Workplace,   // L2 / L20: workplace (coordinate system) origins
+  Retraction,  // no L, none of the above: firmware retraction
+  BadL,        // another L: `Bad or missing parameter`
+  Unknown,     // L from an expression; or the form depends on the axes and they are not known
+};
+
+/// The G10's form. With `s`, the visible axes decide a G10 that has no L, P, R or S; without it (file rules,
+/// look-ahead) such a G10 is Unknown. Axes that are not known (an unreadable M584, an axis created inside an
+/// `if`, a lone macro's unknown baseline) make such a G10 Unknown as well.
+G10Form g10_form(const ParsedFile& pf, const Command& c, const MachineState* s, Version fw);
+
+/// Tool or Report: the G10 runs the tool-offset code (`SetOrReportOffsets`) and needs an existing tool.
+inline bool is_tool_form(G10Form f) { return f == G10Form::Tool || f == G10Form::Report; }
+
+/// Does this M563 define (create or re-create) a tool, rather than report one? Any of S D H X Y Z F R.
+bool m563_defines(const ParsedFile& pf, const Command& c);
+
+/// One M563 axis map (X, Y or Z) as RRF builds it (docs/firmware-behaviour.md#m563-tools): the given axis
+/// indices ANDed with the visible axes, or the default (X→X, Y→Y, Z→Z) when the letter is absent. `known` is false
+/// for an expression (then `bits` is 0).
+struct M563Map {
+  char letter = 'X';
+  bool given = false;
+  bool known = true;
+  uint32_t bits = 0;
+  std::vector<int64_t> indices;  // as written
+  ParamRef param;
+};
+M563Map m563_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter);
+
+/// Does M563 have a Z map on this firmware (3.5+)? Before that `Z` is ignored.
+inline bool has_z_map(Version fw) { return fw >= kRrf3_5; }
+
+/// The visible axes as a bit set of axis indices.
+inline uint32_t visible_mask(const MachineState& s) {
+  return s.visible_axes >= 32 ? 0xFFFFFFFFu : ((1u << s.visible_axes) - 1);
+}
+
+/// The tool a G10 / M568 / M567 addresses: its P, or the current tool.
+struct ToolRef {
+  int number = -1;          // -1: no tool (no P and no tool selected), when known
+  bool known = false;       // false: a P from an expression, or the current tool is not known
+  bool explicit_p = false;  // the command has a P
+  bool none() const { return known && number < 0; }
+};
+ToolRef addressed_tool(const ParsedFile& pf, const Command& c, const MachineState& s);
+
+/// The axis an M585 probes: the first visible axis it names (GCodes6.cpp `ProbeTool()`), as an axis index; -1 for
+/// none (`No axis specified`).
+int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
+
+/// The role the firmware gives a file by its name (docs/firmware-behaviour.md#system-files).
+enum class FileRole : uint8_t {
+  Other,
+  Config,             // sys/config.g (or config.g.bak, the fallback)
+  ConfigOverride,     // sys/config-override.g, loaded by M501
+  ToolFree,           // tfree<n>.g (n = -1: the generic tfree.g, 3.5+)
+  ToolPre,            // tpre<n>.g
+  ToolPost,           // tpost<n>.g
+  Homing,             // homeall.g, homex.g … homez.g, home<axis>.g, homedelta.g
+  Resurrect,          // resurrect.g, written by the firmware at a pause or power failure
+  ResurrectPrologue,  // resurrect-prologue.g
+  Daemon,             // daemon.g (3.1+), run again and again
+  RunOnce,            // runonce.g, run once after config.g, then deleted
+};
+
+/// The role of the file at `sd_path` (any folder; the name is compared without case). For tool-change macros,
+/// `*tool` is set to n, or -1 for the generic tfree.g / tpre.g / tpost.g.
+FileRole file_role(std::string_view sd_path, int* tool = nullptr);
+
+/// Is this a tool-change macro (tfree, tpre, tpost)?
+inline bool is_tool_change_role(FileRole r) {
+  return r == FileRole::ToolFree || r == FileRole::ToolPre || r == FileRole::ToolPost;
+}
+
+}  // namespace rrflint
