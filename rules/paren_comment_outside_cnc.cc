@@ -75,7 +75,7 @@ void check(const FileContext& cx, Sink& out) {
   if (switches.empty() && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
   size_t next_switch = 0;
-  for (const uint32_t li : pf.paren_lines) {  // command lines whose code holds a '('
+  for (const uint32_t li : pf.prefilters.paren_lines) {  // command lines whose code holds a '('
     // The mode switches of earlier lines (a switch applies from the next line).
     for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line < li; ++next_switch)
       cnc = pf.commands[switches[next_switch]].number == 453;
