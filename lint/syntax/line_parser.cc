@@ -66,49 +66,6 @@ bool LineParser::check_expression(uint32_t b, uint32_t e, std::string_view kw, s
   return out_.errors.size() == errors;
 }
 
-void LineParser::check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e) {
-  const std::string_view t = lex_.t;
-  // In CNC mode RRF drops `( … )` outside braces before it reads the line: leave such a line alone.
-  if (lex_.cnc && span_has(t, Span{b, e}, '(')) return;
-  ExprSyntax x(t, e);
-  const std::string_view kw = meta_keyword(kind);
-  std::string_view what;
-  uint32_t p = b;
-  bool ok = true;
-  std::string_view note;
-  switch (kind) {
-    case MetaKind::If:
-    case MetaKind::Elif:
-    case MetaKind::While:
-      what = "condition";
-      ok = x.expression(p) && (p >= e || x.fail(p, "Unexpected characters after expression"));
-      break;
-    case MetaKind::Echo:
-      what = "arguments";
-      if (x.at_char(p) == '>') {  // echo >"file", >>"file", >>>"file": a string straight after the '>'s
-        for (int k = 0; k < 3 && x.at_char(p) == '>'; ++k) ++p;
-        const char c = x.at_char(p);
-        ok = c == '"' ? x.string(p) : c == '{' ? x.expression(p) : x.fail(p, "expected a string expression");
-        if (is_blank(c)) note = " (standalone RRF wants the file name straight after '>'; DSF in SBC mode skips the blank)";
-      }
-      while (ok) {  // expressions separated by commas; a trailing comma is allowed
-        p = x.skip(p);
-        if (p >= e) break;
-        ok = x.expression(p);
-        if (ok && p < e) ok = x.at_char(p) == ',' ? (++p, true) : x.fail(p, "expected ','");
-      }
-      break;
-    default:  // var, global, set: RRF reads one expression and ignores what follows it
-      what = "value";
-      ok = x.expression(p);
-      break;
-  }
-  if (ok || x.gave_up) return;
-  const std::string where = kw == "set" || kw == "var" || kw == "global" ? fmt::format("the {} of '{}'", what, kw)
-                                                                          : fmt::format("the '{}' {}", kw, what);
-  error(std::min(x.at, e > b ? e - 1 : b), e, fmt::format("{} in {}, {}{}", x.msg, where, error_place(t, x.at, e), note));
-}
-
 void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool may_have_del) {
   if (fast_lines && !after_nul && !may_have_del && simple_line(b, e)) return;
   const std::string_view t = lex_.t;
