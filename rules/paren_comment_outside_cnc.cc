@@ -79,8 +79,9 @@ void check(const FileContext& cx, Sink& out) {
     // The mode switches of earlier lines (a switch applies from the next line).
     for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line < li; ++next_switch)
       cnc = pf.commands[switches[next_switch]].number == 453;
-    if (!cnc) {
-      const Line& line = pf.lines[li];
+    const Line& line = pf.lines[li];
+    // The set may over-approximate (ParsedFile::Prefilters): only command lines, not meta commands, are checked.
+    if (!cnc && line.kind == LineKind::Commands) {
       std::vector<Span> groups;
       lex::for_each_plain(t, line.code, [&](uint32_t k) {
         if (t[k] != '(' || in_raw_text(pf, line, k)) return true;
