@@ -95,14 +95,18 @@ inline std::string parse_dump(const ParsedFile& pf) {
     auto has = [&](Span s, char c) { return text.substr(s.begin, s.size()).find(c) != std::string_view::npos; };
     if ((line.kind == LineKind::Commands && has(line.code, '(')) != pf.prefilters.paren_lines.contains(l))
       out += "paren set differs at " + std::to_string(l) + '\n';
-    if (has(line.code, '\'') != pf.prefilters.apostrophe_lines.contains(l)) out += "apostrophe set differs at " + std::to_string(l) + '\n';
-    if (has(line.comment, ':') && !pf.prefilters.colon_comment_lines.contains(l)) out += "colon set misses " + std::to_string(l) + '\n';
-    if (pf.prefilters.colon_comment_lines.contains(l) && line.comment.empty()) out += "colon set: no comment at " + std::to_string(l) + '\n';
+    if (has(line.code, '\'') != pf.prefilters.apostrophe_lines.contains(l))
+      out += "apostrophe set differs at " + std::to_string(l) + '\n';
+    if (has(line.comment, ':') && !pf.prefilters.colon_comment_lines.contains(l))
+      out += "colon set misses " + std::to_string(l) + '\n';
+    if (pf.prefilters.colon_comment_lines.contains(l) && line.comment.empty())
+      out += "colon set: no comment at " + std::to_string(l) + '\n';
   }
   for (auto [a, b] : pf.block_commands) out += "B " + std::to_string(a) + '-' + std::to_string(b) + '\n';
   out += block_commands_mismatch(pf);
-  for (bool b : {pf.mixed_indentation, pf.prefilters.any_exponent, pf.prefilters.any_blank_before_colon, pf.prefilters.any_repeated_letter,
-                 pf.prefilters.any_line_number, pf.prefilters.any_tab_indent})
+  const ParsedFile::Prefilters& pre = pf.prefilters;
+  for (bool b : {pf.mixed_indentation, pre.any_exponent, pre.any_blank_before_colon, pre.any_repeated_letter,
+                 pre.any_line_number, pre.any_tab_indent})
     out += b ? '1' : '0';
   return out;
 }

@@ -538,17 +538,18 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     Parsed r = parse_text("G1 X1:2 ; (comment)\nM950 C\"a\"\nif x > 1\n  G1 X(1)\nG1 'a1\n; \"\n" +
                               std::string(70, ' ') + "G1 X1\nG1 X{1}\n",
                           ParseOptions{.fast_lines = fast});
-    CHECK(std::vector<uint32_t>(r.pf.prefilters.rich_lines.begin(), r.pf.prefilters.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
-    CHECK(r.pf.prefilters.rich_lines.contains(7));
-    CHECK_FALSE(r.pf.prefilters.rich_lines.contains(6));
-    CHECK(std::vector<uint32_t>(r.pf.prefilters.paren_lines.begin(), r.pf.prefilters.paren_lines.end()) == std::vector<uint32_t>{3});
-    CHECK(std::vector<uint32_t>(r.pf.prefilters.apostrophe_lines.begin(), r.pf.prefilters.apostrophe_lines.end()) == std::vector<uint32_t>{4});
+    const ParsedFile::Prefilters& pre = r.pf.prefilters;
+    CHECK(std::vector<uint32_t>(pre.rich_lines.begin(), pre.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
+    CHECK(pre.rich_lines.contains(7));
+    CHECK_FALSE(pre.rich_lines.contains(6));
+    CHECK(std::vector<uint32_t>(pre.paren_lines.begin(), pre.paren_lines.end()) == std::vector<uint32_t>{3});
+    CHECK(std::vector<uint32_t>(pre.apostrophe_lines.begin(), pre.apostrophe_lines.end()) == std::vector<uint32_t>{4});
     // The lines whose comment holds a ':': after code, alone at column 0, indented (a blank line to RRF), after a
     // checksum; not a ':' in the code.
     Parsed c = parse_text("G1 X1 ; a: b\n  ; b:\nM83 ; c\n; c:\nG1 X2;d:\nG1 X1:2 ; e\nN1 G1 X1*12 ; f:\nM117 \"a:b\"\n",
                           ParseOptions{.fast_lines = fast});
-    CHECK(std::vector<uint32_t>(c.pf.prefilters.colon_comment_lines.begin(), c.pf.prefilters.colon_comment_lines.end()) ==
-          std::vector<uint32_t>{0, 1, 3, 4, 6});
+    const LineSet& colons = c.pf.prefilters.colon_comment_lines;
+    CHECK(std::vector<uint32_t>(colons.begin(), colons.end()) == std::vector<uint32_t>{0, 1, 3, 4, 6});
   }
   // And every fixture.
   size_t files = 0;

@@ -33,7 +33,9 @@ inline constexpr MetaWord kMetaWords[] = {
 };
 
 // A command whose one string argument needs no letter (M117 text); a fraction makes it another command.
-inline bool unlettered_string(const Command& c) { return c.fraction < 0 && takes_unlettered_string(c.letter, c.number); }
+inline bool unlettered_string(const Command& c) {
+  return c.fraction < 0 && takes_unlettered_string(c.letter, c.number);
+}
 
 // RRF's expression grammar (expr_syntax.cc).
 // `s`, cut to 40 characters for a message.
