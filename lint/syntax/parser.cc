@@ -53,9 +53,9 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   return pf;
 }
 
-std::vector<uint32_t> ParsedFile::Prefilters::commands_with(const CommandTable& commands, CommandTable::Flag f) const {
-  if (!off) return commands.with_flag(f);
-  std::vector<uint32_t> all(commands.size());
+std::vector<uint32_t> ParsedFile::Prefilters::commands_with(const CommandTable& table, CommandTable::Flag f) const {
+  if (!off) return table.with_flag(f);
+  std::vector<uint32_t> all(table.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<uint32_t>(i);
   return all;
 }

@@ -213,7 +213,7 @@ struct ParsedFile {
     bool any_tab_indent = false;   // some line of code is indented with a tab
     /// The commands with Command::any_exponent / any_blank_before_colon / any_repeated_letter set, in order
     /// (CommandTable::with_flag); every command when the prefilters are off.
-    std::vector<uint32_t> commands_with(const CommandTable& commands, CommandTable::Flag f) const;
+    std::vector<uint32_t> commands_with(const CommandTable& table, CommandTable::Flag f) const;
     bool off = false;  // ParseOptions::no_prefilters: everything above holds everything
   };
   Prefilters prefilters;
