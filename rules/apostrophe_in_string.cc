@@ -93,7 +93,7 @@ void scan(const FileContext& cx, Span s, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  for (const uint32_t li : pf.apostrophe_lines) {
+  for (const uint32_t li : pf.prefilters.apostrophe_lines) {
     // No string on this line: read from its record, without decoding the line.
     if (!lex::contains(t, pf.lines.code(li), '"')) continue;
     const Line& line = pf.lines[li];

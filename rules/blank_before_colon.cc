@@ -47,8 +47,8 @@ written.
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  if (!pf.any_blank_before_colon) return;  // the parse's summary: no command has the flag
-  for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::BlankBeforeColon)) {
+  if (!pf.prefilters.any_blank_before_colon) return;  // the parse's summary: no command has the flag
+  for (const uint32_t ci : pf.prefilters.commands_with(pf.commands, CommandTable::Flag::BlankBeforeColon)) {
     const Command& c = pf.commands[ci];
     for (const Param& p : pf.params(c)) {
       if (!p.blank_before_colon || p.letter == 0) continue;

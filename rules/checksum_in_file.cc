@@ -43,7 +43,7 @@ M584 X0 Y1 Z2 E3
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  if (!pf.any_line_number) return;  // the parse's summary
+  if (!pf.prefilters.any_line_number) return;  // the parse's summary
   for (const Line& line : pf.lines) {
     if (!line.line_number) continue;
     const uint32_t n = lex::indentation(pf, line).end;  // the 'N'

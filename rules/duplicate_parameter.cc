@@ -50,8 +50,8 @@ never read it. A repeat with a different value is not fixed, since only the auth
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  if (!pf.any_repeated_letter) return;  // the parse's summary: no command has the flag
-  for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::RepeatedLetter)) {
+  if (!pf.prefilters.any_repeated_letter) return;  // the parse's summary: no command has the flag
+  for (const uint32_t ci : pf.prefilters.commands_with(pf.commands, CommandTable::Flag::RepeatedLetter)) {
     const Command& c = pf.commands[ci];
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
     uint32_t stop = c.span.end;

@@ -50,8 +50,8 @@ its author intended.
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  if (!pf.any_exponent) return;  // the parse's summary: no command has the flag
-  for (const uint32_t ci : pf.commands.with_flag(CommandTable::Flag::Exponent)) {
+  if (!pf.prefilters.any_exponent) return;  // the parse's summary: no command has the flag
+  for (const uint32_t ci : pf.prefilters.commands_with(pf.commands, CommandTable::Flag::Exponent)) {
     const Command& c = pf.commands[ci];
     for (const Param& p : pf.params(c)) {
       if (!p.exponent_letter || p.letter == 0) continue;

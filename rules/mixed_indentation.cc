@@ -47,7 +47,7 @@ if !move.axes[0].homed
 
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  if (!pf.any_tab_indent) return;  // the parse's summary: spaces alone never mix
+  if (!pf.prefilters.any_tab_indent) return;  // the parse's summary: spaces alone never mix
   bool seen_meta = false;
   std::optional<Line> first_space;  // the first line since the last column-0 line that indented with a space
   std::optional<Line> first_tab;

@@ -76,12 +76,13 @@ void check(const FileContext& cx, Sink& out) {
   if (switches.empty() && cx.machine.uses_code('M', 453)) return;
   bool cnc = false;
   size_t next_switch = 0;
-  for (const uint32_t li : pf.paren_lines) {  // command lines whose code holds a '('
+  for (const uint32_t li : pf.prefilters.paren_lines) {  // command lines whose code holds a '('
     // The mode switches of earlier lines (a switch applies from the next line).
     for (; next_switch < switches.size() && pf.commands[switches[next_switch]].line < li; ++next_switch)
       cnc = pf.commands[switches[next_switch]].number == 453;
-    if (!cnc) {
-      const Line& line = pf.lines[li];
+    const Line& line = pf.lines[li];
+    // The set may over-approximate (ParsedFile::Prefilters): only command lines, not meta commands, are checked.
+    if (!cnc && line.kind == LineKind::Commands) {
       std::vector<Span> groups;
       lex::for_each_plain(t, line.code, [&](uint32_t k) {
         if (t[k] != '(' || in_raw_text(pf, line, k)) return true;

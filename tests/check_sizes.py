@@ -17,19 +17,18 @@ MAX_FILE_LINES = 500
 MAX_FUNCTION_LINES = 80
 CHECKED = ["lint", "rules", "frontend", "cli", "bench"]
 
-# Hot paths measured faster whole, and functions still to be split (see the issue's notes). Keep it short.
+# Hot paths kept whole, and functions still to be split. Keep it short.
 ALLOWED_FUNCTIONS = {
-    # Hot paths: one pass over every byte or line of a 100 MB file; splitting them costs measurable time.
-    "lint/syntax/parser.cc:simple_line": "hot path: the short parse of a plain line (P3)",
-    "lint/syntax/parser.cc:parse_logical_line": "hot path: the full parse of one logical line (P3)",
+    # Hot paths: one pass over every byte or line of a 100 MB file. Kept whole; whether a split costs time is
+    # still to be measured (bench/compare.sh on a quiet machine).
+    "lint/syntax/fast_lines.cc:simple_line": "hot path: the short parse of a plain line (P3)",
+    "lint/syntax/line_parser.cc:parse_logical_line": "hot path: the full parse of one logical line (P3)",
     # Orchestration still to be split (issue: architecture, item 6). Remove each entry when it is split.
     "cli/settings.cc:run_config": "to split: text and JSON output",
     "frontend/config.cc:load": "to split: one function per key group",
-    "lint/syntax/parser.cc:parse_commands": "to split with the parser (item 5)",
+    "lint/syntax/line_parser.cc:parse_commands": "hot path: the commands of a line (P3), to be measured split",
 }
 ALLOWED_FILES = {
-    "lint/syntax/parser.cc": "to split at its seams (issue: architecture, item 5)",
-    "lint/syntax/parser.h": "to split at its seams (issue: architecture, item 5)",
 }
 
 NAME = re.compile(r"([A-Za-z_~][A-Za-z0-9_:<>~]*(?:operator\s*\S+)?)\s*\($")

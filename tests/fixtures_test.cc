@@ -178,6 +178,24 @@ void run_case(FixtureCase& c) {
     auto threaded = lint_card(card, split);
     CHECK(finding_lines(*threaded) == finding_lines(*run));
   }
+  {
+    // The prefilters only skip work (ParsedFile::Prefilters): with every line set holding every line and every
+    // flag true, the rule and the suppression pass find the same.
+    LintOptions unfiltered = opts.lint;
+    unfiltered.no_prefilters = true;
+    auto all_lines = lint_card(card, unfiltered);
+    std::vector<std::string> a, b;
+    for (const Finding& f : run->findings) a.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+    for (const Finding& f : all_lines->findings)
+      b.push_back(f.sd_path + ":" + std::to_string(f.line) + ": " + f.message);
+    for (const std::string& x : b)
+      if (std::find(a.begin(), a.end(), x) == a.end())
+        FAIL_CHECK(c.name << ": found only with the prefilters off (a prefilter hides this finding): " << x);
+    for (const std::string& x : a)
+      if (std::find(b.begin(), b.end(), x) == b.end())
+        FAIL_CHECK(c.name << ": found only with the prefilters on (the rule relies on a prefilter's precision): " << x);
+    CHECK(b == a);
+  }
 
   if (c.rule != "syntax-error") {
     const Machine& m = *run->result.machine;

@@ -84,25 +84,29 @@ inline std::string parse_dump(const ParsedFile& pf) {
   }
   for (const ParseError& e : pf.errors) out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
   for (Span s : pf.semicolon_cuts) out += "S " + std::to_string(s.begin) + '-' + std::to_string(s.end) + '\n';
-  for (uint32_t l : pf.rich_lines) out += "R " + std::to_string(l) + '\n';
-  for (uint32_t l : pf.paren_lines) out += "( " + std::to_string(l) + '\n';
-  for (uint32_t l : pf.apostrophe_lines) out += "' " + std::to_string(l) + '\n';
-  for (uint32_t l : pf.colon_comment_lines) out += ": " + std::to_string(l) + '\n';
+  for (uint32_t l : pf.prefilters.rich_lines) out += "R " + std::to_string(l) + '\n';
+  for (uint32_t l : pf.prefilters.paren_lines) out += "( " + std::to_string(l) + '\n';
+  for (uint32_t l : pf.prefilters.apostrophe_lines) out += "' " + std::to_string(l) + '\n';
+  for (uint32_t l : pf.prefilters.colon_comment_lines) out += ": " + std::to_string(l) + '\n';
   // The sets hold every line they name (the colon set may hold more: a comment cut by a DEL byte).
   const std::string_view text = pf.source->text();
   for (uint32_t l = 0; l < pf.lines.size(); ++l) {
     const Line line = pf.lines[l];
     auto has = [&](Span s, char c) { return text.substr(s.begin, s.size()).find(c) != std::string_view::npos; };
-    if ((line.kind == LineKind::Commands && has(line.code, '(')) != pf.paren_lines.contains(l))
+    if ((line.kind == LineKind::Commands && has(line.code, '(')) != pf.prefilters.paren_lines.contains(l))
       out += "paren set differs at " + std::to_string(l) + '\n';
-    if (has(line.code, '\'') != pf.apostrophe_lines.contains(l)) out += "apostrophe set differs at " + std::to_string(l) + '\n';
-    if (has(line.comment, ':') && !pf.colon_comment_lines.contains(l)) out += "colon set misses " + std::to_string(l) + '\n';
-    if (pf.colon_comment_lines.contains(l) && line.comment.empty()) out += "colon set: no comment at " + std::to_string(l) + '\n';
+    if (has(line.code, '\'') != pf.prefilters.apostrophe_lines.contains(l))
+      out += "apostrophe set differs at " + std::to_string(l) + '\n';
+    if (has(line.comment, ':') && !pf.prefilters.colon_comment_lines.contains(l))
+      out += "colon set misses " + std::to_string(l) + '\n';
+    if (pf.prefilters.colon_comment_lines.contains(l) && line.comment.empty())
+      out += "colon set: no comment at " + std::to_string(l) + '\n';
   }
   for (auto [a, b] : pf.block_commands) out += "B " + std::to_string(a) + '-' + std::to_string(b) + '\n';
   out += block_commands_mismatch(pf);
-  for (bool b : {pf.mixed_indentation, pf.any_exponent, pf.any_blank_before_colon, pf.any_repeated_letter,
-                 pf.any_line_number, pf.any_tab_indent})
+  const ParsedFile::Prefilters& pre = pf.prefilters;
+  for (bool b : {pf.mixed_indentation, pre.any_exponent, pre.any_blank_before_colon, pre.any_repeated_letter,
+                 pre.any_line_number, pre.any_tab_indent})
     out += b ? '1' : '0';
   return out;
 }

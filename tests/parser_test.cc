@@ -539,17 +539,18 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     Parsed r = parse_text("G1 X1:2 ; (comment)\nM950 C\"a\"\nif x > 1\n  G1 X(1)\nG1 'a1\n; \"\n" +
                               std::string(70, ' ') + "G1 X1\nG1 X{1}\n",
                           ParseOptions{.fast_lines = fast});
-    CHECK(std::vector<uint32_t>(r.pf.rich_lines.begin(), r.pf.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
-    CHECK(r.pf.rich_lines.contains(7));
-    CHECK_FALSE(r.pf.rich_lines.contains(6));
-    CHECK(std::vector<uint32_t>(r.pf.paren_lines.begin(), r.pf.paren_lines.end()) == std::vector<uint32_t>{3});
-    CHECK(std::vector<uint32_t>(r.pf.apostrophe_lines.begin(), r.pf.apostrophe_lines.end()) == std::vector<uint32_t>{4});
+    const ParsedFile::Prefilters& pre = r.pf.prefilters;
+    CHECK(std::vector<uint32_t>(pre.rich_lines.begin(), pre.rich_lines.end()) == std::vector<uint32_t>{1, 2, 3, 4, 7});
+    CHECK(pre.rich_lines.contains(7));
+    CHECK_FALSE(pre.rich_lines.contains(6));
+    CHECK(std::vector<uint32_t>(pre.paren_lines.begin(), pre.paren_lines.end()) == std::vector<uint32_t>{3});
+    CHECK(std::vector<uint32_t>(pre.apostrophe_lines.begin(), pre.apostrophe_lines.end()) == std::vector<uint32_t>{4});
     // The lines whose comment holds a ':': after code, alone at column 0, indented (a blank line to RRF), after a
     // checksum; not a ':' in the code.
     Parsed c = parse_text("G1 X1 ; a: b\n  ; b:\nM83 ; c\n; c:\nG1 X2;d:\nG1 X1:2 ; e\nN1 G1 X1*12 ; f:\nM117 \"a:b\"\n",
                           ParseOptions{.fast_lines = fast});
-    CHECK(std::vector<uint32_t>(c.pf.colon_comment_lines.begin(), c.pf.colon_comment_lines.end()) ==
-          std::vector<uint32_t>{0, 1, 3, 4, 6});
+    const LineSet& colons = c.pf.prefilters.colon_comment_lines;
+    CHECK(std::vector<uint32_t>(colons.begin(), colons.end()) == std::vector<uint32_t>{0, 1, 3, 4, 6});
   }
   // And every fixture.
   size_t files = 0;
@@ -685,17 +686,17 @@ TEST_CASE("parser: commands by code", "[parser]") {
     CHECK(list('M', 1024).empty());  // beyond the index: not listed
     CHECK(p.pf.with_code('G', 10).empty());
     CHECK(p.pf.with_code('M', 1).empty());  // a code the file does not use
-    CHECK(p.pf.any_exponent);
-    CHECK_FALSE(p.pf.any_blank_before_colon);
-    CHECK_FALSE(p.pf.any_repeated_letter);
-    CHECK_FALSE(p.pf.any_line_number);
-    CHECK_FALSE(p.pf.any_tab_indent);
+    CHECK(p.pf.prefilters.any_exponent);
+    CHECK_FALSE(p.pf.prefilters.any_blank_before_colon);
+    CHECK_FALSE(p.pf.prefilters.any_repeated_letter);
+    CHECK_FALSE(p.pf.prefilters.any_line_number);
+    CHECK_FALSE(p.pf.prefilters.any_tab_indent);
   }
   Parsed q = parse_text("N1 G1 X1\nif true\n\tG1 X1 X2\n  ; a tab-indented comment is blank\n");
-  CHECK(q.pf.any_line_number);
-  CHECK(q.pf.any_tab_indent);
-  CHECK(q.pf.any_repeated_letter);
-  CHECK_FALSE(parse_text("if true\n\t; only a comment\n").pf.any_tab_indent);
+  CHECK(q.pf.prefilters.any_line_number);
+  CHECK(q.pf.prefilters.any_tab_indent);
+  CHECK(q.pf.prefilters.any_repeated_letter);
+  CHECK_FALSE(parse_text("if true\n\t; only a comment\n").pf.prefilters.any_tab_indent);
 }
 
 TEST_CASE("parser: the codes a file uses, and the commands with a flag", "[parser]") {

@@ -139,7 +139,8 @@ const FileUnit* Machine::load(std::string_view sd_path) {
   const unsigned threads = r.bytes.size() >= 2 * part_bytes_ && part_bytes_ > 0 ? threads_ : 1;
   u->source = &sources_.add(r.display, u->sd_path, std::move(r.bytes), threads);
   trace::mark("line index");
-  u->parsed = parse(*u->source, ParseOptions{.threads = threads_, .part_bytes = part_bytes_});
+  u->parsed =
+      parse(*u->source, ParseOptions{.threads = threads_, .part_bytes = part_bytes_, .no_prefilters = no_prefilters_});
   trace::mark("parsed");
   u->index = static_cast<uint32_t>(units_.size());
   by_path_[key] = static_cast<int32_t>(units_.size());

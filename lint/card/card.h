@@ -89,6 +89,8 @@ class Machine {
     threads_ = n;
     part_bytes_ = part_bytes;
   }
+  /// Tests only: parse with every prefilter off (ParseOptions::no_prefilters).
+  void set_no_prefilters(bool off) { no_prefilters_ = off; }
   /// Records the files the reader lists, so rules can ask whether a file exists without reading it.
   void set_listing(const std::vector<std::string>& sd_paths);
   /// Does the SD card hold this file (case-insensitive)? Looks in the listing and in what was loaded.
@@ -107,6 +109,7 @@ class Machine {
   std::vector<LoadProblem> problems_;
   unsigned threads_ = 1;
   size_t part_bytes_ = 0;
+  bool no_prefilters_ = false;
   std::map<std::string, bool> listing_;  // lower-cased SD paths
   mutable std::map<std::pair<char, int32_t>, std::pair<size_t, bool>> code_uses_;  // code -> (units seen, used)
   mutable std::mutex code_uses_mutex_;  // file rules run on several threads (LintOptions::threads)

@@ -186,7 +186,7 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
   std::vector<Directive> out;
   const SourceFile& f = *pf.source;
   if (f.line_count() == 0) return out;
-  for (const uint32_t li : pf.colon_comment_lines) {  // a directive has a ':'; most comments are prose without one
+  for (const uint32_t li : pf.prefilters.colon_comment_lines) {  // a directive has a ':'; most comments are prose without one
     if (auto d = parse_comment(pf, rules, pf.lines[li])) out.push_back(std::move(*d));
   }
   if (out.empty()) return out;

@@ -267,6 +267,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   res.machine = std::make_unique<Machine>(sources, reader);
   Machine& m = *res.machine;
   m.set_threads(options.threads, options.part_bytes);
+  m.set_no_prefilters(options.no_prefilters);
   const std::vector<const Rule*> rules = enabled_rules(rule_set, options);
 
   // 1. Load and parse every file of the machine.

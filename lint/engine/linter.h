@@ -39,6 +39,9 @@ struct LintOptions {
   /// Tests only: call every check_node rule on every node, ignoring the rules' `on` lists. The fixture runner
   /// lints each case both ways and requires the same findings, which proves the lists complete.
   bool dispatch_every_node = false;
+  /// Tests only: parse with every prefilter off (ParseOptions::no_prefilters). The fixture runner lints each case
+  /// both ways and requires the same findings, which proves the rules keep the prefilters' contract.
+  bool no_prefilters = false;
 };
 
 /// Which rules are on, after select/extend/ignore. Unknown names go to `errors`.
