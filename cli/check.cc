@@ -14,17 +14,17 @@
 
 #include "cli/cli.h"
 #include "lint/base/parallel.h"
-#include "lint/render/render.h"
 #include "lint/base/trace.h"
 #include "lint/engine/suppress.h"
+#include "lint/render/render.h"
 
 namespace rrflint::cli {
 namespace {
 
 struct Totals {
   std::vector<Diagnostic> diags;
-  size_t linted = 0;              // files linted and reported on (never 0 in a run that passes)
-  bool lone_hint = false;         // a lone file or stdin was linted with no card around it (say so once)
+  size_t linted = 0;       // files linted and reported on (never 0 in a run that passes)
+  bool lone_hint = false;  // a lone file or stdin was linted with no card around it (say so once)
   size_t files = 0, fixed = 0, fixed_files = 0, suppressions = 0, suppressed_files = 0;
   bool failing = false, io_error = false;
   std::string diff;
@@ -85,7 +85,8 @@ void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Total
   for (uint32_t i = 0; i < m.unit_count(); ++i) linted.insert(to_lower(m.unit(i).sd_path));
   for (const LoadProblem& p : m.problems()) {
     const std::string sd = to_lower(p.sd_path);
-    if (sd == config && (job.card || job.standalone.empty() || to_lower(job.standalone.filename().string()) == "config.g")) {
+    if (sd == config &&
+        (job.card || job.standalone.empty() || to_lower(job.standalone.filename().string()) == "config.g")) {
       error(fmt::format("{}: cannot lint config.g: {}", p.display, p.message));
       t.io_error = true;
     } else if (job.named.count(sd) || (!job.card && job.explicit_path)) {
@@ -96,9 +97,10 @@ void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Total
   for (const auto& [sd, as_named] : job.named)
     if (!linted.count(sd) && std::none_of(m.problems().begin(), m.problems().end(),
                                           [&](const LoadProblem& p) { return to_lower(p.sd_path) == sd; })) {
-      error(fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files, and macros without an extension "
-                        "below macros/)",
-                        as_named));
+      error(
+          fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files, and macros without an extension "
+                      "below macros/)",
+                      as_named));
       t.io_error = true;
     }
   if (!job.card && m.unit_count() == 0 && m.problems().empty() && job.explicit_path) {
@@ -279,7 +281,8 @@ struct JobRun {
       for (const Evidence& e : tg.evidence)
         std::cerr << fmt::format("rrflint:   evidence: {} ({}:{})\n", e.what, sm.get(e.loc.file).display_path(),
                                  sm.get(e.loc.file).position(e.loc.span.begin).line);
-      if (eff.config) std::cerr << "rrflint:   config: " << Origin{Origin::Kind::File, eff.config->files.back(), 0}.str() << "\n";
+      if (eff.config)
+        std::cerr << "rrflint:   config: " << Origin{Origin::Kind::File, eff.config->files.back(), 0}.str() << "\n";
     }
   }
 };
@@ -349,8 +352,7 @@ int report_diff(std::ostream& os, const Totals& t, bool io_error) {
   if (t.fixed_files)
     std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}\n", t.fixed, t.fixed == 1 ? "" : "s",
                              t.fixed_files, t.fixed_files == 1 ? "" : "s");
-  else
-    std::cerr << "rrflint: no fixes to apply\n";
+  else std::cerr << "rrflint: no fixes to apply\n";
   if (io_error) return kExitError;
   return t.fixed_files ? kExitFindings : kExitClean;
 }
@@ -424,8 +426,9 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   if (!run_jobs(jobs, co, settings, gitignore, sm, t)) return kExitError;
   io_error = io_error || t.io_error;
   if (t.lone_hint)
-    std::cerr << "rrflint: note: a file with no SD card around it (no sys/config.g) is linted on its own, as a macro "
-                 "that runs after boot; to lint it as a config.g, run `rrflint check --stdin-filename config.g - < FILE`\n";
+    std::cerr
+        << "rrflint: note: a file with no SD card around it (no sys/config.g) is linted on its own, as a macro "
+           "that runs after boot; to lint it as a config.g, run `rrflint check --stdin-filename config.g - < FILE`\n";
   // Never a pass over nothing.
   if (t.linted == 0) return nothing_linted(t, stats, io_error);
   for (const std::string& why : stats.empty) warning(why);

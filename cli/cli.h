@@ -104,10 +104,10 @@ struct Job {
   std::optional<std::string> stdin_bytes;  // content for `-`
   std::string stdin_sd_path;
   std::string title;
-  bool explicit_path = false;              // named on the command line (exclusions only with --force-exclude)
-  bool excluded = false;                   // stdin excluded by --force-exclude: not linted (--fix echoes it)
+  bool explicit_path = false;                // named on the command line (exclusions only with --force-exclude)
+  bool excluded = false;                     // stdin excluded by --force-exclude: not linted (--fix echoes it)
   std::map<std::string, std::string> named;  // files of the card named on the command line: lower SD path -> as named
-  std::shared_ptr<DirCache> dirs;          // the folder listings the plan made, for the card's reader
+  std::shared_ptr<DirCache> dirs;            // the folder listings the plan made, for the card's reader
 };
 
 struct PlanOptions {
@@ -210,7 +210,7 @@ struct CheckOptions {
   bool exit_zero = false, verbose = false;
   bool fix = false, unsafe_fixes = false, diff = false;
   std::optional<std::string> add_suppressions;  // the reason (may be empty)
-  unsigned jobs = 0;                             // machines linted at once; 0 = the CPU count, at most 8
+  unsigned jobs = 0;                            // machines linted at once; 0 = the CPU count, at most 8
   PlanOptions plan;
 };
 

@@ -118,7 +118,9 @@ bool write_atomic(const fs::path& path, const std::string& expected, const std::
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::string tmpl = (dir / ("." + target.filename().string() + ".rrflint-XXXXXX")).string();
   const int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) return fail(fmt::format("cannot create a temporary file in {} ({}): not written", dir.string(), std::strerror(errno)));
+  if (fd < 0)
+    return fail(
+        fmt::format("cannot create a temporary file in {} ({}): not written", dir.string(), std::strerror(errno)));
   int write_errno = 0;
   size_t done = 0;
   while (done < bytes.size()) {
@@ -168,7 +170,7 @@ std::vector<std::string_view> split_keep(std::string_view s) {
 }
 
 struct Op {
-  char kind;  // ' ', '-', '+'
+  char kind;    // ' ', '-', '+'
   size_t a, b;  // line indices in before/after
 };
 

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <cstdio>
 #include <unordered_map>
 
 #include "cli/cli.h"
@@ -63,8 +63,8 @@ void GitIgnore::prefetch(const std::vector<std::string>& files) {
       ::unlink(tmpl);
       continue;
     }
-    const std::string cmd = fmt::format("git -C {} check-ignore -z --stdin < {} 2>/dev/null", shell_quote(root),
-                                        shell_quote(tmpl));
+    const std::string cmd =
+        fmt::format("git -C {} check-ignore -z --stdin < {} 2>/dev/null", shell_quote(root), shell_quote(tmpl));
     std::string out;
     int status = -1;
     if (FILE* p = ::popen(cmd.c_str(), "r")) {

@@ -1,11 +1,11 @@
 // Command-line paths -> jobs, one per machine. A folder is walked for SD roots (a folder whose sys/ holds
 // config.g, or a sys folder), lone .g files and extensionless macros under macros/; .gitignore and the config
 // file's `exclude` are honoured while walking, and for explicitly named files only with --force-exclude.
-#include <algorithm>
 #include <fmt/format.h>
+#include <algorithm>
 
-#include <iostream>
 #include <sys/stat.h>
+#include <iostream>
 #include <unordered_map>
 
 #include "cli/cli.h"
@@ -193,7 +193,6 @@ std::optional<std::string> JobReader::disk_path(std::string_view sd_path) const 
   return job_.standalone.string();
 }
 
-
 namespace {
 
 // The current folder, absolute and normal.
@@ -211,8 +210,8 @@ struct Planner {
   bool& io_error;
   PlanStats& stats;
   const std::string cwd = current_folder();
-  std::map<std::string, size_t> by_root;               // canonical sys folder -> job
-  std::unordered_map<std::string, size_t> by_sys;      // sys folder as the card gave it -> job
+  std::map<std::string, size_t> by_root;           // canonical sys folder -> job
+  std::unordered_map<std::string, size_t> by_sys;  // sys folder as the card gave it -> job
   Folders folders;
   // Files and folders met in a walk (absolute, normal); `link`: the file is a symbolic link.
   std::vector<std::string> found;

@@ -1,7 +1,7 @@
 // rrflint: the command-line front end. Argument parsing and dispatch only; the subcommands are in the other
 // files of cli/ (see cli.h) and the work is done by the core library (lint/).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <signal.h>
 #include <unistd.h>
@@ -12,8 +12,8 @@
 
 #include "cli/cli.h"
 #include "frontend/disk.h"
-#include "lint/render/model_render.h"
 #include "lint/base/trace.h"
+#include "lint/render/model_render.h"
 
 using namespace rrflint;
 using namespace rrflint::cli;
@@ -123,12 +123,19 @@ struct Commands {
 
 // The options that check, model and config share.
 void add_common(CLI::App* sub, CliOptions& cli) {
-  sub->add_option("--firmware", cli.firmware, "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
+  sub->add_option("--firmware", cli.firmware,
+                  "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
   sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
-  sub->add_option("--select", cli.select, "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
-      ->delimiter(',')->allow_extra_args(false);
-  sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")->delimiter(',')->allow_extra_args(false);
-  sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--select", cli.select,
+                  "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")
+      ->delimiter(',')
+      ->allow_extra_args(false);
+  sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")
+      ->delimiter(',')
+      ->allow_extra_args(false);
   sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
   sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml");
   sub->add_flag("--isolated", cli.isolated, "Ignore every config file");
@@ -137,10 +144,12 @@ void add_common(CLI::App* sub, CliOptions& cli) {
 }
 
 void add_check(CLI::App& app, Commands& c) {
-  CLI::App* check = c.check = app.add_subcommand("check", "Lint SD-card folders, sys folders, repositories or single files");
+  CLI::App* check = c.check =
+      app.add_subcommand("check", "Lint SD-card folders, sys folders, repositories or single files");
   CheckOptions& co = c.co;
   CliOptions& cli = c.cli;
-  check->add_option("paths", co.paths, "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)");
+  check->add_option("paths", co.paths,
+                    "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)");
   c.format_opt =
       check->add_option("--format", co.format, "Output format: text, concise, json, json-lines, sarif, github")
           ->check(CLI::IsMember({"text", "concise", "json", "json-lines", "sarif", "github"}));
@@ -148,7 +157,8 @@ void add_check(CLI::App& app, Commands& c) {
       ->check(CLI::IsMember({"error", "warning", "info"}));
   check->add_option("--color", co.color, "Colour: auto, always, never (NO_COLOR, FORCE_COLOR, TERM=dumb are honoured)")
       ->check(CLI::IsMember({"auto", "always", "never"}));
-  check->add_option("--stdin-filename", co.plan.stdin_filename, "The name of the file read from stdin (messages, config, card)");
+  check->add_option("--stdin-filename", co.plan.stdin_filename,
+                    "The name of the file read from stdin (messages, config, card)");
   check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout");
   check->add_flag("--exit-zero", co.exit_zero, "Exit 0 even when findings reach --fail-on");
   check->add_option("-j,--jobs", co.jobs, "Lint up to N machines at once (default: the CPU count, at most 8)")
@@ -157,7 +167,8 @@ void add_check(CLI::App& app, Commands& c) {
   check->add_flag("--fix", co.fix, "Apply safe fixes (rounds until stable, at most 10) and report what is left");
   check->add_flag("--unsafe-fixes", co.unsafe_fixes, "With --fix or --diff, apply unsafe fixes too");
   check->add_flag("--diff", co.diff, "Print the fixes as a unified diff and write nothing (exit 1 if there are any)");
-  check->add_flag("--force-exclude", co.plan.force_exclude, "Apply exclude and .gitignore to paths named on the command line");
+  check->add_flag("--force-exclude", co.plan.force_exclude,
+                  "Apply exclude and .gitignore to paths named on the command line");
   check->add_flag("--no-respect-gitignore", c.no_gitignore, "Lint files that .gitignore excludes");
   // Documented here; parsed before CLI11 sees the arguments (see take_add_suppressions).
   check->footer(
@@ -181,14 +192,17 @@ void add_model_rule_config(CLI::App& app, Commands& c) {
   rule->add_option("--generate-docs", ro.generate_dir, "Write every rule's page and an index to this folder");
   rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list");
   rule->add_flag("--check", ro.check, "With --generate-docs: write nothing, exit 1 when a file is stale");
-  rule->add_option("--config", c.cli.config_path, "With --format json: the config file whose docs-url the links follow");
+  rule->add_option("--config", c.cli.config_path,
+                   "With --format json: the config file whose docs-url the links follow");
   rule->add_flag("--isolated", c.cli.isolated, "Ignore every config file");
 
   // config
-  CLI::App* config = c.config = app.add_subcommand("config", "Print the effective settings for a path and where each came from");
+  CLI::App* config = c.config =
+      app.add_subcommand("config", "Print the effective settings for a path and where each came from");
   config->add_option("path", c.config_path, "A file or folder (default: .)");
   add_common(config, c.cli);
-  config->add_option("--fail-on", c.cli.fail_on, "error, warning or info")->check(CLI::IsMember({"error", "warning", "info"}));
+  config->add_option("--fail-on", c.cli.fail_on, "error, warning or info")
+      ->check(CLI::IsMember({"error", "warning", "info"}));
 }
 
 // `rrflint model PATH`: the machine model of the first machine PATH names.

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
+#include "lint/engine/rule.h"
 #include "lint/render/render.h"
 #include "lint/render/rule_docs.h"
-#include "lint/engine/rule.h"
 #include "rules/registry.h"
 
 namespace rrflint::cli {

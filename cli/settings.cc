@@ -37,8 +37,7 @@ std::shared_ptr<const Config> Settings::config_for(const std::string& dir) {
     if (auto cfg = load_config(*file, &err)) {
       for (const std::string& w : cfg->warnings) warning(w);
       it->second = std::make_shared<const Config>(std::move(*cfg));
-    }
-    else if (!error_) error_ = err;
+    } else if (!error_) error_ = err;
   }
   return memo->second = it->second;
 }
@@ -184,7 +183,8 @@ int run_config(const CliOptions& cli, const std::string& path_arg) {
       origin_of(!cli.firmware.empty(), cfg ? cfg->firmware : no_v));
   row("board", eff.lint.board ? fmt::format("\"{}\"", board_name(*eff.lint.board)) : "(inferred from the files)",
       origin_of(!cli.board.empty(), cfg ? cfg->board : no_b));
-  row("fail-on", fmt::format("\"{}\"", severity_name(eff.fail_on)), origin_of(!cli.fail_on.empty(), cfg ? cfg->fail_on : no_s));
+  row("fail-on", fmt::format("\"{}\"", severity_name(eff.fail_on)),
+      origin_of(!cli.fail_on.empty(), cfg ? cfg->fail_on : no_s));
   row("machine.tool-changer", eff.lint.tool_changer ? "true" : "false",
       origin_of(cli.tool_changer, cfg ? cfg->tool_changer : no_t));
   row("inline suppressions", eff.lint.inline_suppressions ? "on" : "off",
@@ -194,7 +194,8 @@ int run_config(const CliOptions& cli, const std::string& path_arg) {
   if (cfg) {
     for (const SelectionLayer& l : cfg->selection) {
       if (l.select.value) row("select", quoted_list(*l.select.value), l.select.origin.str());
-      if (l.extend_select.value) row("extend-select", quoted_list(*l.extend_select.value), l.extend_select.origin.str());
+      if (l.extend_select.value)
+        row("extend-select", quoted_list(*l.extend_select.value), l.extend_select.origin.str());
       if (l.ignore.value) row("ignore", quoted_list(*l.ignore.value), l.ignore.origin.str());
     }
     for (const PathPattern& p : cfg->exclude) row("exclude", fmt::format("\"{}\"", p.glob), p.origin.str());

@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
 #include <cctype>
 #include <set>
-#include <toml++/toml.h>
 
 #include "lint/engine/rule.h"
 #include "rules/registry.h"
@@ -96,8 +96,9 @@ struct Loader {
       const toml::source_region& at = k.source();
       if (key == "extend") continue;
       if (key == "select" || key == "extend-select" || key == "ignore") {
-        Setting<std::vector<std::string>>& s =
-            key == "select" ? layer.select : key == "ignore" ? layer.ignore : layer.extend_select;
+        Setting<std::vector<std::string>>& s = key == "select"   ? layer.select
+                                               : key == "ignore" ? layer.ignore
+                                                                 : layer.extend_select;
         s.value.emplace();
         if (!rule_list(abs, v, key, *s.value)) return false;
         s.origin = origin(abs, at);
@@ -105,7 +106,8 @@ struct Loader {
       } else if (key == "firmware") {
         std::string s;
         if (!v.is_string())
-          return fail(abs, v.source(), "'firmware' must be a string such as \"3.5\" (a TOML number loses digits: 3.10 is 3.1)");
+          return fail(abs, v.source(),
+                      "'firmware' must be a string such as \"3.5\" (a TOML number loses digits: 3.10 is 3.1)");
         string_value(abs, v, key, s);
         std::string warn, why;
         auto ver = parse_target_version(s, &warn, &why);
@@ -116,7 +118,9 @@ struct Loader {
         std::string s;
         if (!string_value(abs, v, key, s)) return false;
         auto b = parse_board(s);
-        if (!b) return fail(abs, v.source(), fmt::format("'board': unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", s));
+        if (!b)
+          return fail(abs, v.source(),
+                      fmt::format("'board': unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", s));
         cfg.board = {*b, origin(abs, at)};
       } else if (key == "fail-on") {
         std::string s;
@@ -162,11 +166,14 @@ struct Loader {
         }
       } else if (key == "per-file-ignores") {
         const toml::table* t = v.as_table();
-        if (!t) return fail(abs, v.source(), "'per-file-ignores' must be a table: [per-file-ignores] then \"macros/**\" = [\"RRF101\"]");
+        if (!t)
+          return fail(abs, v.source(),
+                      "'per-file-ignores' must be a table: [per-file-ignores] then \"macros/**\" = [\"RRF101\"]");
         for (auto&& [gk, gv] : *t) {
           std::vector<std::string> rules;
           if (!rule_list(abs, gv, fmt::format("per-file-ignores.\"{}\"", gk.str()), rules)) return false;
-          cfg.per_file_ignores.push_back(PathPattern{std::string(gk.str()), base, selector_codes(rules), origin(abs, gk.source())});
+          cfg.per_file_ignores.push_back(
+              PathPattern{std::string(gk.str()), base, selector_codes(rules), origin(abs, gk.source())});
         }
       } else {
         return fail(abs, at,
@@ -270,9 +277,10 @@ std::optional<std::string> parse_docs_url(std::string_view url, std::string* why
   else if (lower.starts_with("http://")) rest = 7;
   else if (lower.starts_with("file://")) rest = 7;
   else
-    return no(fmt::format("'{}' is not an http://, https:// or file:/// URL (the folder holding the rule pages, "
-                          "e.g. \"https://example.org/rrflint/docs/rules/\")",
-                          url));
+    return no(
+        fmt::format("'{}' is not an http://, https:// or file:/// URL (the folder holding the rule pages, "
+                    "e.g. \"https://example.org/rrflint/docs/rules/\")",
+                    url));
   if (lower.starts_with("file://")) {
     if (url.size() <= rest || url[rest] != '/')
       return no(fmt::format("'{}': a file URL needs an absolute path, file:///path/to/docs/rules/", url));

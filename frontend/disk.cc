@@ -107,7 +107,8 @@ int open_readable(const std::string& path, struct stat& st, std::string* error) 
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd < 0) {
     if (!error) return -1;
-    if (::stat(path.c_str(), &st) != 0) return fail(errno == ELOOP ? "too many levels of symbolic links" : "no such file");
+    if (::stat(path.c_str(), &st) != 0)
+      return fail(errno == ELOOP ? "too many levels of symbolic links" : "no such file");
     if (!S_ISREG(st.st_mode)) return fail(kind_of(st.st_mode));
     return fail("permission denied");
   }
@@ -271,7 +272,8 @@ ReadResult DiskReader::read(std::string_view sd_path) {
     r.sd_path = std::string(sd_path);
     auto where = locate(sd_path);
     r.display = where ? fs::path(*where).lexically_relative(base_).generic_string() : std::string(sd_path);
-    if (!where) r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
+    if (!where)
+      r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
     return r;
   }
   std::string spelled;

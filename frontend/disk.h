@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -74,7 +74,7 @@ class DiskReader : public FileReader {
  private:
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
   void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
-  std::string root_, sys_, base_;  // absolute and lexically normal
+  std::string root_, sys_, base_;   // absolute and lexically normal
   std::shared_ptr<DirCache> dirs_;  // each folder listed once (a card asks for many missing tool macros)
   std::map<std::string, std::string> overlay_;
 };

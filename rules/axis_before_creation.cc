@@ -49,11 +49,20 @@ bool is_axis_command(const Command& c) {
   if (c.letter == 'G') return c.number == 31;
   if (c.letter != 'M') return false;
   switch (c.number) {
-    case 92: case 201: case 203: case 205: case 206: case 208: case 350: case 566: case 574: case 906: case 913:
-    case 915: case 917:
-      return true;
-    default:
-      return false;
+    case 92:
+    case 201:
+    case 203:
+    case 205:
+    case 206:
+    case 208:
+    case 350:
+    case 566:
+    case 574:
+    case 906:
+    case 913:
+    case 915:
+    case 917: return true;
+    default: return false;
   }
 }
 
@@ -109,14 +118,15 @@ void check(const NodeContext& cx, Sink& out) {
           .note(cx.where(later), fmt::format("axis {} is created here", axis));
     } else {
       out.report(kMeta, cx.at(p.span),
-                 fmt::format("'{}' sets axis {}, but no M584 creates axis {}: RRF ignores '{}' without a message",
-                             code, axis, axis, pf.text(p.span)));
+                 fmt::format("'{}' sets axis {}, but no M584 creates axis {}: RRF ignores '{}' without a message", code,
+                             axis, axis, pf.text(p.span)));
     }
   }
 }
 
 }  // namespace
 
-extern const Rule axis_before_creation{.meta = kMeta, .check_node = check, .on = "G31 M92 M201 M203 M205 M206 M208 M350 M566 M574 M906 M913 M915 M917"};
+extern const Rule axis_before_creation{
+    .meta = kMeta, .check_node = check, .on = "G31 M92 M201 M203 M205 M206 M208 M350 M566 M574 M906 M913 M915 M917"};
 
 }  // namespace rrflint

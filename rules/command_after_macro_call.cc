@@ -86,12 +86,11 @@ void check(const FileContext& cx, Sink& out) {
                           Edit::replace(cx.at(Span{c.span.end, next.span.begin}),
                                         terminator + std::string(pf.text(lex::indentation(pf, line)))));
     const std::string why =
-        c.letter == 'T' ? std::string("may not be executed: a 'T' command must be alone on its line")
-                        : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
-                                      lex::word(pf, c));
+        c.letter == 'T'
+            ? std::string("may not be executed: a 'T' command must be alone on its line")
+            : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line", lex::word(pf, c));
     out.report(kMeta, cx.at(rest),
-               fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c),
-                           why))
+               fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c), why))
         .fix(std::move(fix));
   }
 }

@@ -67,9 +67,9 @@ safe: it keeps the block as its indentation shows it.
 constexpr Version kFixedIn{3, 6, 0, 1, 3};  // 3.6.0-beta.3
 
 struct Block {
-  uint32_t indent;   // the indent of the block's lines
-  MetaKind opener;   // if/elif/else/while, or None for a plain block (extra indentation)
-  Line head;         // the line that opened it
+  uint32_t indent;  // the indent of the block's lines
+  MetaKind opener;  // if/elif/else/while, or None for a plain block (extra indentation)
+  Line head;        // the line that opened it
 };
 
 bool is_code(const Line& l) {
@@ -84,7 +84,7 @@ void check(const FileContext& cx, Sink& out) {
   if (cx.target.version >= kFixedIn) return;
   const ParsedFile& pf = cx.parsed();
   const LineTable& lines = pf.lines;
-  std::vector<Block> open;  // blocks with indent > 0, innermost last, as the lines' indentation shows them
+  std::vector<Block> open;   // blocks with indent > 0, innermost last, as the lines' indentation shows them
   std::optional<Line> prev;  // the previous code line
   for (size_t i = 0; i < lines.size(); ++i) {
     const Line& line = lines[i];
@@ -134,10 +134,10 @@ void check(const FileContext& cx, Sink& out) {
     const bool loop = escaped->opener == MetaKind::While;
     Report r = out.report(
         kMeta, Severity::Warning, cx.at(at),
-        fmt::format("comment at column 0 ends the '{}' block on RRF {}: line {} and the rest of the block {}",
-                    meta_keyword(escaped->opener), cx.target.version.str(), next_no,
-                    loop ? "run once after the loop instead of in every pass"
-                         : "run even when the condition is false"));
+        fmt::format(
+            "comment at column 0 ends the '{}' block on RRF {}: line {} and the rest of the block {}",
+            meta_keyword(escaped->opener), cx.target.version.str(), next_no,
+            loop ? "run once after the loop instead of in every pass" : "run even when the condition is false"));
     r.note(cx.at(escaped->head.code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
     r.fix(std::move(fix));
   }

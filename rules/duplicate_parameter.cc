@@ -55,11 +55,12 @@ void check(const FileContext& cx, Sink& out) {
     const Command& c = pf.commands[ci];
     // Outside CNC mode a '(' does not start a comment; what follows it is RRF112's concern.
     uint32_t stop = c.span.end;
-    if (lex::contains(t, c.span, '(')) lex::for_each_plain(t, c.span, [&](uint32_t k) {
-      if (t[k] != '(') return true;
-      stop = k;
-      return false;
-    });
+    if (lex::contains(t, c.span, '('))
+      lex::for_each_plain(t, c.span, [&](uint32_t k) {
+        if (t[k] != '(') return true;
+        stop = k;
+        return false;
+      });
     // A letter straight after another letter is part of an unquoted word (`Cout1` gives C, O, U, T1): RRF103.
     // Likewise the x of a hex byte in raw text (`M540 P0x02:0x80`).
     auto in_word = [&](const Param& p) {
@@ -68,7 +69,8 @@ void check(const FileContext& cx, Sink& out) {
       return lex::is_alpha(before) || (before == '0' && (p.letter == 'X' || p.letter == 'x'));
     };
     auto usable = [&](const Param& p) {
-      return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) && !in_word(p);
+      return p.letter != 0 && p.kind != ValueKind::None && p.span.begin < stop && !lex::is_raw_text(c, p) &&
+             !in_word(p);
     };
     for (const Param& p : pf.params(c)) {
       if (!usable(p)) continue;

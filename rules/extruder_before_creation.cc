@@ -60,7 +60,8 @@ std::string extruders_here(int n) {
 }
 
 NodeId later_m584_e(const NodeContext& cx) {
-  return tools::find_later(cx, 'M', 584, [&](const tools::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
+  return tools::find_later(cx, 'M', 584,
+                           [&](const tools::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
 }
 
 void note_m584_e(const NodeContext& cx, Report& r) {
@@ -125,13 +126,12 @@ void check_e_values(const NodeContext& cx, Sink& out) {
   if (e->kind != ValueKind::Number && e->kind != ValueKind::List) return;
   const size_t count = list_items(pf, *e).size();
   if (count <= static_cast<size_t>(s.extruders)) return;
-  const std::string answer = s.firmware >= kRrf3_5_2
-                                 ? std::string("array too long for parameter 'E'")
-                                 : fmt::format("array too long, max length = {}", s.extruders);
+  const std::string answer = s.firmware >= kRrf3_5_2 ? std::string("array too long for parameter 'E'")
+                                                     : fmt::format("array too long, max length = {}", s.extruders);
   std::string what = count == 1 ? "an extruder value" : fmt::format("{} extruder values", count);
   Report r = out.report(kMeta, cx.at(e->span),
-                        fmt::format("{} gives {}, but {}: RRF answers '{}' and the E values are lost", tools::quote(pf, c),
-                                    what, extruders_here(s.extruders), answer));
+                        fmt::format("{} gives {}, but {}: RRF answers '{}' and the E values are lost",
+                                    tools::quote(pf, c), what, extruders_here(s.extruders), answer));
   note_m584_e(cx, r);
 }
 
@@ -161,16 +161,25 @@ void check(const NodeContext& cx, Sink& out) {
   if (c.letter != 'M' || c.fraction >= 0) return;
   switch (c.number) {
     case 563: check_m563(cx, out); break;
-    case 92: case 201: case 203: case 205: case 350: case 566: case 906: case 913: case 917:
-      check_e_values(cx, out);
-      break;
-    case 572: case 591: case 221: check_d(cx, out); break;
+    case 92:
+    case 201:
+    case 203:
+    case 205:
+    case 350:
+    case 566:
+    case 906:
+    case 913:
+    case 917: check_e_values(cx, out); break;
+    case 572:
+    case 591:
+    case 221: check_d(cx, out); break;
     default: break;
   }
 }
 
 }  // namespace
 
-extern const Rule extruder_before_creation{.meta = kMeta, .check_node = check, .on = "M563 M92 M201 M203 M205 M350 M566 M906 M913 M917 M572 M591 M221"};
+extern const Rule extruder_before_creation{
+    .meta = kMeta, .check_node = check, .on = "M563 M92 M201 M203 M205 M350 M566 M906 M913 M917 M572 M591 M221"};
 
 }  // namespace rrflint

@@ -53,11 +53,10 @@ struct IntParam {
 
 // Curated from the firmware's GetIValue/GetUIValue/GetLimitedUIValue/GetIntArray/GetUnsignedArray calls.
 constexpr IntParam kIntParams[] = {
-    {'M', 563, "PDHF"}, {'M', 950, "HFJPST"}, {'M', 308, "S"},  {'M', 106, "P"},  {'M', 140, "HP"},
-    {'M', 141, "HP"},   {'M', 143, "H"},      {'M', 307, "H"},  {'M', 301, "H"},  {'M', 570, "H"},
-    {'G', 10, "PL"},    {'M', 568, "P"},      {'M', 584, "P"},  {'M', 558, "KP"}, {'G', 31, "KP"},
-    {'M', 572, "D"},    {'M', 591, "D"},      {'M', 221, "D"},  {'M', 207, "P"},  {'M', 567, "P"},
-    {'M', 116, "P"},
+    {'M', 563, "PDHF"}, {'M', 950, "HFJPST"}, {'M', 308, "S"}, {'M', 106, "P"}, {'M', 140, "HP"}, {'M', 141, "HP"},
+    {'M', 143, "H"},    {'M', 307, "H"},      {'M', 301, "H"}, {'M', 570, "H"}, {'G', 10, "PL"},  {'M', 568, "P"},
+    {'M', 584, "P"},    {'M', 558, "KP"},     {'G', 31, "KP"}, {'M', 572, "D"}, {'M', 591, "D"},  {'M', 221, "D"},
+    {'M', 207, "P"},    {'M', 567, "P"},      {'M', 116, "P"},
 };
 
 // The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers.
@@ -114,11 +113,11 @@ void check_command(const FileContext& cx, const Command& c, std::string_view let
                                letter, item, lex::word(pf, c), letter, kept));
       } else {
         const Span rest{items[i].begin + static_cast<uint32_t>(dot), p->value.end};
-        out.report(kMeta, cx.at(items[i]),
-                   fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
-                               "list at the '.', so '{}' is ignored",
-                               item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept,
-                               lex::clip(pf.text(rest))));
+        out.report(
+            kMeta, cx.at(items[i]),
+            fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
+                        "list at the '.', so '{}' is ignored",
+                        item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept, lex::clip(pf.text(rest))));
       }
       break;  // RRF stops reading the parameter at the first '.'
     }
@@ -130,9 +129,9 @@ void check(const FileContext& cx, Sink& out) {
   for (const uint32_t i : pf.with_code('T', -1)) {
     const Command& c = pf.commands[i];
     if (c.fraction > 0 && c.has_number)
-      out.report(kMeta, cx.at(c.word),
-                 fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c),
-                             c.number));
+      out.report(
+          kMeta, cx.at(c.word),
+          fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c), c.number));
   }
   for (const IntParam& ip : kIntParams)
     for (const uint32_t i : pf.with_code(ip.letter, ip.number)) check_command(cx, pf.commands[i], ip.params, out);

@@ -77,7 +77,8 @@ void check(const NodeContext& cx, Sink& out) {
                   tools::quote(pf, c), letters, list.size() > 1 ? "are not visible axes" : "is not a visible axis"));
   for (char L : list) {
     if (s.axis_index(L) >= 0) {
-      if (s.visible_set != kNoNode) r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", tools::axis_name(L)));
+      if (s.visible_set != kNoNode)
+        r.note(cx.where(s.visible_set), fmt::format("axis {} is hidden here", tools::axis_name(L)));
     } else if (NodeId at = tools::later_m584_for(cx, L); at != kNoNode) {
       r.note(cx.where(at), fmt::format("axis {} is created here", tools::axis_name(L)));
     }

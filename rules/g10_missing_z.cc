@@ -86,14 +86,14 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   std::string why, value;
   if (m->probed) {
-    const tools::NodeCommand origin = m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin)
-                                                           : tools::NodeCommand{};
+    const tools::NodeCommand origin =
+        m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin) : tools::NodeCommand{};
     why = origin.is('M', 585) ? "the value M585 measured" : "a value loaded from config-override.g";
   } else if (!m->z.known) {
     why = "a value rrflint cannot know";
   } else {
-    tools::NodeCommand origin = m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin)
-                                                     : tools::NodeCommand{};
+    tools::NodeCommand origin =
+        m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin) : tools::NodeCommand{};
     if (origin.is('G', 10))
       if (ParamRef p = origin.pf->find(*origin.c, 'Z'); p && !is_unknown_value(*p) && p->kind == ValueKind::Number)
         value = std::string(origin.pf->text(p->value));

@@ -83,19 +83,22 @@ void check(const NodeContext& cx, Sink& out) {
     }
     const bool zero = v.value == 0;
     if (zero && sets_mapped) continue;
-    std::string msg =
-        zero ? fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; "
-                           "a calibrated value belongs on {}",
-                           tools::quote(pf, c), L, ref.number, L, mapped, mapped)
-             : fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, "
-                           "it applies the {} offset instead",
-                           tools::quote(pf, c), L, ref.number, L, mapped, mapped);
+    std::string msg = zero
+                          ? fmt::format(
+                                "{} sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; "
+                                "a calibrated value belongs on {}",
+                                tools::quote(pf, c), L, ref.number, L, mapped, mapped)
+                          : fmt::format(
+                                "{} sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, "
+                                "it applies the {} offset instead",
+                                tools::quote(pf, c), L, ref.number, L, mapped, mapped);
     Report r = out.report(kMeta, zero ? Severity::Info : kMeta.severity, cx.at(v.param->span), std::move(msg));
     r.note(cx.where(map->origin), fmt::format("{} of tool {} is mapped to {} here", L, ref.number, mapped));
     if (count == 1 && !sets_mapped && single < static_cast<int>(s.axes.size())) {
       const char to = s.axes[static_cast<size_t>(single)].letter;
-      r.fix(Fix::unsafe(fmt::format("use {} instead of {}", tools::axis_name(to), L),
-                        Edit::replace(cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), tools::axis_name(to))));
+      r.fix(
+          Fix::unsafe(fmt::format("use {} instead of {}", tools::axis_name(to), L),
+                      Edit::replace(cx.at(Span{v.param->span.begin, v.param->span.begin + 1}), tools::axis_name(to))));
     }
   }
 }

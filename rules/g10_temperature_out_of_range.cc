@@ -89,17 +89,17 @@ void check(const NodeContext& cx, Sink& out) {
   if (!t || !s.heaters_known) return;
   auto v = first_violation(pf, c, s, *t);
   if (!v) return;
-  Report r = out.report(
-      kMeta, cx.at(c.span),
-      fmt::format("{} sets tool {}'s {} temperature to {}, at or above heater {}'s limit of {}: RRF answers "
-                  "'Requested temperature out of range' and does not set it",
-                  tools::quote(pf, c), n, v->letter == 'S' ? "active" : "standby", tools::degrees(v->value), v->heater,
-                  tools::degrees(v->h->limit)));
+  Report r =
+      out.report(kMeta, cx.at(c.span),
+                 fmt::format("{} sets tool {}'s {} temperature to {}, at or above heater {}'s limit of {}: RRF answers "
+                             "'Requested temperature out of range' and does not set it",
+                             tools::quote(pf, c), n, v->letter == 'S' ? "active" : "standby", tools::degrees(v->value),
+                             v->heater, tools::degrees(v->h->limit)));
   if (v->h->monitor_origin != kNoNode) {
     const Node& origin = cx.graph.nodes[v->h->monitor_origin];
-    const std::optional<Command> oc =
-        origin.kind == NodeKind::Command ? std::optional(cx.machine.unit(origin.unit).parsed.commands[origin.index])
-                                         : std::nullopt;
+    const std::optional<Command> oc = origin.kind == NodeKind::Command
+                                          ? std::optional(cx.machine.unit(origin.unit).parsed.commands[origin.index])
+                                          : std::nullopt;
     const bool user = oc && oc->is('M', 143);
     r.note(cx.where(v->h->monitor_origin),
            user ? fmt::format("'M143' sets heater {}'s over-temperature limit here", v->heater)

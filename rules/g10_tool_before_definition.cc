@@ -91,8 +91,7 @@ void check(const NodeContext& cx, Sink& out) {
       later != kNoNode
           ? fmt::format("{} names tool {}, which does not exist yet: RRF answers '{}' and sets nothing", what, n,
                         answer)
-          : fmt::format("{} names tool {}, which is never created: RRF answers '{}' and sets nothing", what, n,
-                        answer);
+          : fmt::format("{} names tool {}, which is never created: RRF answers '{}' and sets nothing", what, n, answer);
   Report r = out.report(kMeta, cx.at(c.span), std::move(msg));
   if (later == kNoNode) return;
   r.note(cx.where(later), fmt::format("tool {} is created here", n));

@@ -68,11 +68,11 @@ void check(const FileContext& cx, Sink& out) {
     const std::string reply = limited && P.value < 0   ? "rejects the negative value"
                               : limited && P.value > 9 ? "answers 'parameter 'P' too high'"
                                                        : "answers 'Bad or missing parameter'";
-    out.report(kMeta, cx.at(P.param->span),
-               fmt::format("{} names workplace {}, but RRF {} has coordinate systems 1–9 (G54 … G59.3){}: it {} and "
-                           "sets nothing",
-                           tools::quote(pf, c), P.value, fw.str(), limited ? " and P0 for the current one" : "",
-                           reply));
+    out.report(
+        kMeta, cx.at(P.param->span),
+        fmt::format("{} names workplace {}, but RRF {} has coordinate systems 1–9 (G54 … G59.3){}: it {} and "
+                    "sets nothing",
+                    tools::quote(pf, c), P.value, fw.str(), limited ? " and P0 for the current one" : "", reply));
   }
 }
 

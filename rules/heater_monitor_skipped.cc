@@ -12,7 +12,8 @@ constexpr RuleMeta kMeta{
     .code = "RRF206",
     .name = "heater-monitor-skipped",
     .severity = Severity::Warning,
-    .summary = "A tool or bed names a heater before M950 creates it, so the heater gets no default over-temperature monitor.",
+    .summary =
+        "A tool or bed names a heater before M950 creates it, so the heater gets no default over-temperature monitor.",
     .docs = R"md(
 ## What it does
 On targets from RRF 3.2, reports `M563 … H<n>`, `M140 H<n>` or `M141 H<n>` naming heater n before the `M950 H<n>`

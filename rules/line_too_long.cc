@@ -50,10 +50,9 @@ void check(const FileContext& cx, Sink& out) {
     Span s{line.code.begin + static_cast<uint32_t>(limit), line.code.end};
     if (s.begin >= s.end) s = line.code;
     out.report(kMeta, cx.at(s),
-               fmt::format("line stores {} characters, more than the {} RRF {} accepts: {}", line.stored_length,
-                           limit, cx.target.version.str(),
-                           aborts ? "'GCode command too long' aborts the rest of the file"
-                                  : "the line is dropped"));
+               fmt::format("line stores {} characters, more than the {} RRF {} accepts: {}", line.stored_length, limit,
+                           cx.target.version.str(),
+                           aborts ? "'GCode command too long' aborts the rest of the file" : "the line is dropped"));
   }
 }
 

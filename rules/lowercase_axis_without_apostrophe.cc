@@ -46,7 +46,7 @@ M584 'f4
 )md",
 };
 
-constexpr std::string_view kUpperAxes = "abcduvw";  // lowercase forms of M584's upper-case axis letters
+constexpr std::string_view kUpperAxes = "abcduvw";     // lowercase forms of M584's upper-case axis letters
 constexpr std::string_view kTakenAsUpper = "xyzeprs";  // meant as X, Y, Z, E, P, R, S
 
 std::string board_phrase(const Target& t) {
@@ -72,16 +72,14 @@ void check(const FileContext& cx, Sink& out) {
         out.report(kMeta, cx.at(p.span),
                    fmt::format("lowercase axis '{} is beyond '{}, the highest RRF {}{} knows: {} is ignored and "
                                "creates no axis",
-                               p.letter, highest, cx.target.version.str(), board_phrase(cx.target),
-                               pf.text(p.span)));
+                               p.letter, highest, cx.target.version.str(), board_phrase(cx.target), pf.text(p.span)));
         continue;
       }
       if (!lex::is_lower(written) || !upper_seen || kTakenAsUpper.find(written) != std::string_view::npos) continue;
       const std::string as_written(pf.text(p.span));
       const std::string meant = "'" + as_written;
       std::string support;
-      if (highest == 0)
-        support = ", but lowercase axes need RRF 3.3 or later";
+      if (highest == 0) support = ", but lowercase axes need RRF 3.3 or later";
       else if (written > highest)
         support = fmt::format(", but RRF {}{} knows lowercase axes up to '{} only", cx.target.version.str(),
                               board_phrase(cx.target), highest);

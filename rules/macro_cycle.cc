@@ -61,8 +61,8 @@ void check(const EndContext& cx, Sink& out) {
                                       "RRF's nesting limit aborts every running file",
                                       e.path));
     for (auto it = calls.rbegin(); it != calls.rend(); ++it)
-      r.note(cx.where(*it), fmt::format("{} runs the next file of the cycle here",
-                                        cx.machine.unit(cx.graph.nodes[*it].unit).sd_path));
+      r.note(cx.where(*it),
+             fmt::format("{} runs the next file of the cycle here", cx.machine.unit(cx.graph.nodes[*it].unit).sd_path));
   }
 }
 

@@ -55,10 +55,11 @@ void check(const EndContext& cx, Sink& out) {
     if (!called_known) called = called_files(cx), called_known = true;
     const FileUnit& root = chain_root(cx, e);
     if (called.count(to_lower(root.sd_path))) continue;
-    Report r = out.report(kMeta, event_path_loc(cx, e),
-                          fmt::format("calling '{}' here nests macros {} deep, past RRF {}'s limit of {}: 'Push(): stack "
-                                      "overflow' aborts every running file",
-                                      e.path, cx.graph.nodes[e.node].depth + 1, cx.target.version.str(), e.limit));
+    Report r =
+        out.report(kMeta, event_path_loc(cx, e),
+                   fmt::format("calling '{}' here nests macros {} deep, past RRF {}'s limit of {}: 'Push(): stack "
+                               "overflow' aborts every running file",
+                               e.path, cx.graph.nodes[e.node].depth + 1, cx.target.version.str(), e.limit));
     const std::vector<NodeId> chain = call_chain(cx.graph, e.node);
     if (!chain.empty())
       r.note(cx.where(chain.back()), fmt::format("the chain of calls starts here, in {}", root.sd_path));

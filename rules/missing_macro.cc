@@ -51,8 +51,9 @@ void check(const EndContext& cx, Sink& out) {
     std::string hint;
     const std::string lower = to_lower(e.path);
     if (lower.starts_with("/sys/macros/")) hint = fmt::format(": did you mean '0:/macros/{}'?", e.path.substr(12));
-    out.report(kMeta, event_path_loc(cx, e),
-               fmt::format("macro file '{}' does not exist: RRF warns 'Macro file not found' and carries on{}", e.path, hint));
+    out.report(
+        kMeta, event_path_loc(cx, e),
+        fmt::format("macro file '{}' does not exist: RRF warns 'Macro file not found' and carries on{}", e.path, hint));
   }
 }
 

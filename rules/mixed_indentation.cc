@@ -75,8 +75,7 @@ void check(const FileContext& cx, Sink& out) {
                                           tab_here ? "tabs" : "spaces", tab_here ? "spaces" : "tabs")
                             : std::string("this line is indented with both tabs and spaces")));
       if (other)
-        r.note(cx.at(lex::indentation(pf, *other)),
-               fmt::format("indented with {} here", tab_here ? "spaces" : "tabs"));
+        r.note(cx.at(lex::indentation(pf, *other)), fmt::format("indented with {} here", tab_here ? "spaces" : "tabs"));
       return;  // once per file, like RRF
     }
     // Before the first meta command RRF starts every line afresh.

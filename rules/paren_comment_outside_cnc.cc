@@ -50,9 +50,7 @@ is unsafe: it changes what the standalone firmware reads, to what the author mea
 )md",
 };
 
-bool sets_mode(const Command& c) {
-  return c.is('M', 451) || c.is('M', 452) || c.is('M', 453);
-}
+bool sets_mode(const Command& c) { return c.is('M', 451) || c.is('M', 452) || c.is('M', 453); }
 
 // Is `off` inside unquoted text that RRF copies as written (M117 text, M550 PName)?
 bool in_raw_text(const ParsedFile& pf, const Line& line, uint32_t off) {

@@ -69,8 +69,9 @@ bool may_run_in_cnc_or_laser_mode(const FileContext& cx) {
 
 void check(const FileContext& cx, Sink& out) {
   const auto& errors = cx.parsed().errors;
-  const bool axis_lines_ok = std::any_of(errors.begin(), errors.end(), [](const ParseError& e) { return e.axis_repeat; }) &&
-                             may_run_in_cnc_or_laser_mode(cx);
+  const bool axis_lines_ok =
+      std::any_of(errors.begin(), errors.end(), [](const ParseError& e) { return e.axis_repeat; }) &&
+      may_run_in_cnc_or_laser_mode(cx);
   for (const ParseError& e : errors)
     if (!(e.axis_repeat && axis_lines_ok)) out.report(kMeta, cx.at(e.span), e.message);
 }

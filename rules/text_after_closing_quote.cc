@@ -13,7 +13,8 @@ constexpr RuleMeta kMeta{
     .code = "RRF117",
     .name = "text-after-closing-quote",
     .severity = Severity::Warning,
-    .summary = "A word follows a closing quote with no blank: RRF ends the string there and reads the rest as parameters.",
+    .summary =
+        "A word follows a closing quote with no blank: RRF ends the string there and reads the rest as parameters.",
     .docs = R"md(
 ## What it does
 Reports a quoted string in a G/M/T command that is followed at once, with no blank, by a word of two or more
@@ -79,11 +80,12 @@ void check_string(const FileContext& cx, const Command& c, const std::vector<Par
   }
   std::string list;
   for (char l : letters) list += list.empty() ? fmt::format("{}", l) : fmt::format(", {}", l);
-  out.report(kMeta, cx.at(at),
-             fmt::format("text right after the closing quote: RRF ends the string {} at this quote and reads '{}' as "
-                         "{}; write \"\" for a quote inside a string",
-                         lex::clip(t.substr(v.begin, v.size())), lex::clip(t.substr(v.end, glued_end - v.end)),
-                         list.empty() ? "more text" : fmt::format("parameter{} {}", letters.size() > 1 ? "s" : "", list)));
+  out.report(
+      kMeta, cx.at(at),
+      fmt::format("text right after the closing quote: RRF ends the string {} at this quote and reads '{}' as "
+                  "{}; write \"\" for a quote inside a string",
+                  lex::clip(t.substr(v.begin, v.size())), lex::clip(t.substr(v.end, glued_end - v.end)),
+                  list.empty() ? "more text" : fmt::format("parameter{} {}", letters.size() > 1 ? "s" : "", list)));
 }
 
 void check(const FileContext& cx, Sink& out) {

@@ -63,7 +63,8 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
     if (n.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const CommandTable::Code code = pf.commands.code(n.index);
-    return code.letter == letter && code.number == number && code.fraction < 0 && pred(NodeCommand{&pf, pf.commands[n.index], &n});
+    return code.letter == letter && code.number == number && code.fraction < 0 &&
+           pred(NodeCommand{&pf, pf.commands[n.index], &n});
   });
 }
 
@@ -244,7 +245,8 @@ inline bool z_set_later(const NodeContext& cx, int n) {
   bool set = false;
   cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId i, const Node& node) {
     if (node.kind == NodeKind::ToolSelect)
-      return node.index == static_cast<uint32_t>(n) || (node.index == kNoToolNumber && !is_deselect(cx.machine, cx.graph, i));
+      return node.index == static_cast<uint32_t>(n) ||
+             (node.index == kNoToolNumber && !is_deselect(cx.machine, cx.graph, i));
     if (node.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
     const CommandTable::Code code = pf.commands.code(node.index);

@@ -73,20 +73,21 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
     if (i < s.visible_axes) continue;
     const int idx = static_cast<int>(i);
     const bool hidden = idx < static_cast<int>(s.axes.size());
-    const std::string effect = m.bits == 0
-                                   ? fmt::format("{}'s {} moves go nowhere", tool_name(tool), m.letter)
-                                   : fmt::format("{}'s {} moves drive only {}", tool_name(tool), m.letter,
-                                                 s.axis_letters(m.bits));
+    const std::string effect =
+        m.bits == 0 ? fmt::format("{}'s {} moves go nowhere", tool_name(tool), m.letter)
+                    : fmt::format("{}'s {} moves drive only {}", tool_name(tool), m.letter, s.axis_letters(m.bits));
     std::string msg;
     if (hidden) {
-      msg = fmt::format("{} maps {} to axis index {} ({}), which 'M584 P{}' hides: tool maps keep only visible axes, "
-                        "so RRF silently drops it and {}",
-                        tools::quote(pf, cx.command()), m.letter, idx, tools::axis_name(s, idx), s.visible_axes, effect);
+      msg = fmt::format(
+          "{} maps {} to axis index {} ({}), which 'M584 P{}' hides: tool maps keep only visible axes, "
+          "so RRF silently drops it and {}",
+          tools::quote(pf, cx.command()), m.letter, idx, tools::axis_name(s, idx), s.visible_axes, effect);
     } else {
-      msg = fmt::format("{} maps {} to axis index {}, but only {} axes exist at this point ({}): RRF silently drops "
-                        "the index and {}",
-                        tools::quote(pf, cx.command()), m.letter, idx, s.axes.size(),
-                        existing_axes(s, static_cast<int>(s.axes.size())), effect);
+      msg = fmt::format(
+          "{} maps {} to axis index {}, but only {} axes exist at this point ({}): RRF silently drops "
+          "the index and {}",
+          tools::quote(pf, cx.command()), m.letter, idx, s.axes.size(),
+          existing_axes(s, static_cast<int>(s.axes.size())), effect);
     }
     const int by_driver = axis_with_driver(s, i, idx);
     const bool mixup = by_driver >= 3 && by_driver < s.visible_axes;
@@ -107,8 +108,9 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
       });
       if (later != kNoNode) r.note(cx.where(later), fmt::format("axis index {} is created later, here", idx));
     }
-    if (mixup) r.note(cx.where(s.axes[static_cast<size_t>(by_driver)].drivers_set),
-                               fmt::format("driver {} is assigned to axis {} here", idx, tools::axis_name(s, by_driver)));
+    if (mixup)
+      r.note(cx.where(s.axes[static_cast<size_t>(by_driver)].drivers_set),
+             fmt::format("driver {} is assigned to axis {} here", idx, tools::axis_name(s, by_driver)));
   }
 }
 

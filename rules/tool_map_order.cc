@@ -13,8 +13,9 @@ constexpr RuleMeta kMeta{
     .code = "RRF322",
     .name = "tool-map-order",
     .severity = Severity::Warning,
-    .summary = "An M563 axis index names a different axis than the standard XYZUVWABCD order, because axes were "
-               "created out of order.",
+    .summary =
+        "An M563 axis index names a different axis than the standard XYZUVWABCD order, because axes were "
+        "created out of order.",
     .docs = R"md(
 ## What it does
 `M563` maps a tool's X, Y and Z to axis *indices*, and an axis gets its index when `M584` creates it. One `M584`
@@ -85,7 +86,8 @@ void check(const NodeContext& cx, Sink& out) {
                       tools::quote(pf, c), L, i, tools::axis_name(s, static_cast<int>(i)), exp_name, exp_name,
                       exp_index));
       if (actual.created != kNoNode)
-        r.note(cx.where(actual.created), fmt::format("{} is created here, as axis index {}", tools::axis_name(s, static_cast<int>(i)), i));
+        r.note(cx.where(actual.created),
+               fmt::format("{} is created here, as axis index {}", tools::axis_name(s, static_cast<int>(i)), i));
       if (exp_index >= 0 && s.axes[static_cast<size_t>(exp_index)].created != kNoNode)
         r.note(cx.where(s.axes[static_cast<size_t>(exp_index)].created),
                fmt::format("{} is created here, as axis index {}", exp_name, exp_index));

@@ -46,7 +46,8 @@ M563 P2 D1 X0:3
 };
 
 std::string describe(const MachineState& s, const M563Map& m) {
-  return fmt::format("{} → {}{}", m.letter, s.axis_letters(m.bits), m.given ? "" : " (its default, since it is not given)");
+  return fmt::format("{} → {}{}", m.letter, s.axis_letters(m.bits),
+                     m.given ? "" : " (its default, since it is not given)");
 }
 
 void check(const NodeContext& cx, Sink& out) {
@@ -59,8 +60,7 @@ void check(const NodeContext& cx, Sink& out) {
   for (char L : {'X', 'Y', 'Z'}) any = any || (pf.find(c, L) && (L != 'Z' || has_z_map(s.firmware)));
   if (!any) return;  // all defaults: they never overlap
   const bool z = has_z_map(s.firmware);
-  const M563Map maps[3] = {m563_map(pf, c, s, 'X'), m563_map(pf, c, s, 'Y'),
-                                  z ? m563_map(pf, c, s, 'Z') : M563Map{}};
+  const M563Map maps[3] = {m563_map(pf, c, s, 'X'), m563_map(pf, c, s, 'Y'), z ? m563_map(pf, c, s, 'Z') : M563Map{}};
   for (const auto& m : maps)
     if (!m.known) return;
   for (int a = 0; a < 3; ++a) {
@@ -68,8 +68,8 @@ void check(const NodeContext& cx, Sink& out) {
       if (b == 2 && !z) continue;
       const uint32_t shared = maps[a].bits & maps[b].bits;
       if (!shared) continue;
-      const std::string reply = z ? "Cannot map two or more of X,Y,Z to the same axis"
-                                  : "Cannot map both X and Y to the same axis";
+      const std::string reply =
+          z ? "Cannot map two or more of X,Y,Z to the same axis" : "Cannot map both X and Y to the same axis";
       const M563Map& given = maps[a].given ? maps[a] : maps[b];
       out.report(kMeta, cx.at(given.param ? given.param->span : c.span),
                  fmt::format("{} maps both {} and {} to {} ({}; {}): RRF answers '{}' and does not create the tool",

@@ -107,8 +107,9 @@ void check(const NodeContext& cx, Sink& out) {
     if (nd.kind != NodeKind::Command || nd.maybe) return false;
     const ParsedFile& opf = cx.machine.unit(nd.unit).parsed;
     const CommandTable::Code code = opf.commands.code(nd.index);
-    if (code.fraction >= 0 || !(code.letter == 'G' ? code.number == 10
-                                : code.letter == 'M' && (code.number == 207 || code.number == 567 || code.number == 568)))
+    if (code.fraction >= 0 ||
+        !(code.letter == 'G' ? code.number == 10
+                             : code.letter == 'M' && (code.number == 207 || code.number == 567 || code.number == 568)))
       return false;
     const Command& oc = opf.commands[nd.index];
     const bool m207 = oc.is('M', 207), temps = oc.is('G', 10) || oc.is('M', 568);

@@ -62,8 +62,8 @@ G1 Y250 F6000
 
 bool is_motion(const Command& c) {
   if (c.letter == 'G')
-    return (c.fraction < 0 && (c.number <= 3 || c.number == 28 || c.number == 29 || c.number == 30 ||
-                               c.number == 32)) ||
+    return (c.fraction < 0 &&
+            (c.number <= 3 || c.number == 28 || c.number == 29 || c.number == 30 || c.number == 32)) ||
            c.number == 38;
   return c.is('M', 585) || c.is('M', 98);
 }
@@ -166,12 +166,13 @@ void check(const NodeContext& cx, Sink& out) {
     const Node& mn = cx.graph.nodes[motion];
     const FileUnit& mu = cx.machine.unit(mn.unit);
     const Command& mc = mu.parsed.commands[mn.index];
-    const std::string what = mc.is('M', 98)    ? "runs a macro"
-                             : mc.is('G', 28)  ? "homes axes"
+    const std::string what = mc.is('M', 98)                       ? "runs a macro"
+                             : mc.is('G', 28)                     ? "homes axes"
                              : mc.letter == 'G' && mc.number <= 3 ? "moves the machine"
                                                                   : "probes";
     std::string names;
-    for (NodeId m : macros) names += (names.empty() ? "" : ", ") + file_name(cx.machine.unit(cx.graph.nodes[m].unit).sd_path);
+    for (NodeId m : macros)
+      names += (names.empty() ? "" : ", ") + file_name(cx.machine.unit(cx.graph.nodes[m].unit).sd_path);
     out.report(kMeta, cx.at(c.span),
                fmt::format("{} runs {} at boot, before any axis is homed, and {} there {}: RRF 3.1 and later run "
                            "tool-change macros even when nothing is homed; select the tool with 'T{} P0' in config.g",

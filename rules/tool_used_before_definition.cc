@@ -100,12 +100,12 @@ void check(const NodeContext& cx, Sink& out) {
   // `T99` for a tool that nothing creates, beyond the 0–49 range, is the old way to deselect every tool.
   if (c.letter == 'T' && n >= 50 && later == kNoNode && !created_anywhere(cx.machine, n)) return;
   const std::string when = later != kNoNode ? fmt::format(" before 'M563 P{}' creates it", n)
-                           : cx.in_boot()    ? ", which the boot sequence never creates"
-                                             : ", which no M563 on the SD card creates";
+                           : cx.in_boot()   ? ", which the boot sequence never creates"
+                                            : ", which no M563 on the SD card creates";
   const Severity sev = c.letter == 'T' ? Severity::Warning : Severity::Error;
-  Report r = out.report(kMeta, sev, cx.at(c.span),
-                        fmt::format("{} names tool {}{}: {}", tools::quote(pf, c), n, when,
-                                    consequence(c, s.firmware, n)));
+  Report r =
+      out.report(kMeta, sev, cx.at(c.span),
+                 fmt::format("{} names tool {}{}: {}", tools::quote(pf, c), n, when, consequence(c, s.firmware, n)));
   if (later != kNoNode) r.note(cx.where(later), fmt::format("tool {} is created here", n));
 }
 

@@ -96,8 +96,9 @@ void check(const FileContext& cx, Sink& out) {
     if (cx.machine.has_file("/sys/" + name + ".g")) return;
     bool elsewhere = false;
     for (int v = 0; v <= 7; ++v) elsewhere = elsewhere || implemented(c.letter, c.number, c.fraction, v);
-    std::string why = elsewhere ? fmt::format("RRF {} does not implement it (other versions do)", cx.target.version.str())
-                                : fmt::format("RRF does not implement it");
+    std::string why = elsewhere
+                          ? fmt::format("RRF {} does not implement it (other versions do)", cx.target.version.str())
+                          : fmt::format("RRF does not implement it");
     out.report(kMeta, cx.at(c.word),
                fmt::format("'{}' is not a command: {}, so it answers '{}: Command is not supported'; a /sys/{}.g "
                            "macro would run instead",

@@ -66,9 +66,9 @@ struct StringParam {
 
 // The entries of one code are adjacent (check() walks a code's commands once for all its letters).
 constexpr StringParam kStringParams[] = {
-    {98, 'P', true, "macro file name"}, {950, 'C', true, "pin name"},     {308, 'P', true, "pin name"},
-    {308, 'Y', true, "sensor type"},    {308, 'A', true, "sensor name"},  {574, 'P', false, "pin name"},
-    {558, 'C', false, "pin name"},      {591, 'C', false, "pin name"},    {563, 'S', false, "tool name"},
+    {98, 'P', true, "macro file name"}, {950, 'C', true, "pin name"},    {308, 'P', true, "pin name"},
+    {308, 'Y', true, "sensor type"},    {308, 'A', true, "sensor name"}, {574, 'P', false, "pin name"},
+    {558, 'C', false, "pin name"},      {591, 'C', false, "pin name"},   {563, 'S', false, "tool name"},
 };
 
 // M98 P uses GetQuotedString from 3.5.0-rc.1; the other parameters need quotes in every RRF 3.
@@ -112,12 +112,13 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   for (char ch : text) has_letter = has_letter || lex::is_alpha(ch);
   if (!has_letter && !sp.numbers_too) return;
   if (text.find('"') != std::string_view::npos || text.find('{') != std::string_view::npos) return;
-  std::string why = sp.number == 98
-                        ? fmt::format("RRF {} needs quotes here and does not run the macro ('expected a string "
-                                      "expression')",
-                                      cx.target.version.str())
-                        : std::string("RRF 3 needs quotes here and rejects the command ('expected a string "
-                                      "expression')");
+  std::string why = sp.number == 98 ? fmt::format(
+                                          "RRF {} needs quotes here and does not run the macro ('expected a string "
+                                          "expression')",
+                                          cx.target.version.str())
+                                    : std::string(
+                                          "RRF 3 needs quotes here and rejects the command ('expected a string "
+                                          "expression')");
   Fix fix =
       Fix::unsafe(fmt::format("quote '{}'", text), Edit::replace(cx.at(Span{after, e}), fmt::format("\"{}\"", text)));
   out.report(kMeta, cx.at(Span{p.span.begin, e}),

@@ -61,7 +61,8 @@ void check(const EndContext& cx, Sink& out) {
   for (size_t i = 0; i < problems.size(); ++i) {
     const LoadProblem& p = problems[i];
     if (reported[i] || p.file == kNoFile || to_lower(p.sd_path) == config) continue;
-    out.report(kMeta, Location{p.file, Span{0, 0}}, fmt::format("file '{}' cannot be linted: {}", p.sd_path, p.message));
+    out.report(kMeta, Location{p.file, Span{0, 0}},
+               fmt::format("file '{}' cannot be linted: {}", p.sd_path, p.message));
   }
 }
 

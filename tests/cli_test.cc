@@ -1,8 +1,8 @@
 // The rrflint binary end to end: formats, colours, text output, fixes (--fix, --diff, --unsafe-fixes),
 // suppressions on the command line, repository walks (.gitignore, exclude, --force-exclude), stdin, the `rule`
 // command and the generated docs (which must not be stale).
-#include <catch2/catch.hpp>
 #include <sys/stat.h>
+#include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "cli/cli.h"
-#include "tests/cli_util.h"
 #include "lint/render/render.h"
 #include "lint/render/rule_docs.h"
 #include "rules/registry.h"
+#include "tests/cli_util.h"
 
 using namespace rrflint;
 using namespace rrflint::test;
@@ -127,9 +127,8 @@ TEST_CASE("cli: colours follow --color, FORCE_COLOR, NO_COLOR and TERM=dumb", "[
     const std::string base = "cd " + shell_quote(t.root().string()) + " && env -u FORCE_COLOR -u NO_COLOR ";
     auto run_tty = [&](const std::string& env) {
       const std::string out = (t / "tty.out").string();
-      const std::string cmd = base + env + " script -qec " +
-                              shell_quote(shell_quote(RRFLINT_BINARY) + " check p") + " /dev/null > " +
-                              shell_quote(out) + " 2>&1";
+      const std::string cmd = base + env + " script -qec " + shell_quote(shell_quote(RRFLINT_BINARY) + " check p") +
+                              " /dev/null > " + shell_quote(out) + " 2>&1";
       (void)std::system(cmd.c_str());
       return t.read("tty.out");
     };
@@ -193,7 +192,8 @@ TEST_CASE("cli: github format is chosen under GITHUB_ACTIONS unless --format say
   CHECK(o.code == 1);
   auto ls = lines_of(o.out);
   REQUIRE(ls.size() == 2);
-  CHECK(ls[0].starts_with("::warning file=p/sys/config.g,line=3,endLine=3,col=1,endColumn=6,title=rrflint RRF101 unknown-command::"));
+  CHECK(ls[0].starts_with(
+      "::warning file=p/sys/config.g,line=3,endLine=3,col=1,endColumn=6,title=rrflint RRF101 unknown-command::"));
   CHECK(ls[1].starts_with("::notice file=p/sys/config.g,line=4,"));
   o = run_rrflint(t.root(), "check p --format concise", "GITHUB_ACTIONS=true");
   CHECK(lines_of(o.out)[0].starts_with("p/sys/config.g:3:1: warning:"));
@@ -230,7 +230,7 @@ TEST_CASE("cli: --fix applies safe fixes until stable, keeps line endings and pe
   t.write("q/sys/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
   ::chmod((t / "p/sys/config.g").c_str(), 0640);
   auto o = run_rrflint(t.root(), "check p q --fix");
-  CHECK(o.code == 1);  // the RRF101 on M9999 remains
+  CHECK(o.code == 1);                                                        // the RRF101 on M9999 remains
   CHECK(t.read("p/sys/config.g") == "M584 X0 Y1 Z2\r\nG1 X0\r\nM9999\r\n");  // two rounds: disable, then enable
   CHECK(t.read("q/sys/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
   CHECK(contains(o.out, "Fixed 3 findings."));
@@ -240,7 +240,8 @@ TEST_CASE("cli: --fix applies safe fixes until stable, keeps line endings and pe
   ::stat((t / "p/sys/config.g").c_str(), &st);
   CHECK((st.st_mode & 0777) == 0640);
   // No temporary files are left behind.
-  for (const auto& e : fs::directory_iterator(t / "p/sys")) CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
+  for (const auto& e : fs::directory_iterator(t / "p/sys"))
+    CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
   // Nothing left to fix: the files stay as they are.
   o = run_rrflint(t.root(), "check q --fix");
   CHECK(o.code == 0);
@@ -299,7 +300,8 @@ TEST_CASE("cli: unsafe fixes only with --unsafe-fixes", "[cli][fix]") {
   CHECK(o.code == 0);
 }
 
-TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found from its folder, --fix to stdout", "[cli]") {
+TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found from its folder, --fix to stdout",
+          "[cli]") {
   TempTree t;
   t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"tool.g\"\n");
   t.write("p/sys/tool.g", "G1 X0\n");
@@ -318,7 +320,8 @@ TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found fr
 
 TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppress]") {
   TempTree t;
-  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM9999 ; rrflint: disable=RRF101\nM9998 ; note\nM9997 ; rrflint: disable=line-too-long\n");
+  t.write("p/sys/config.g",
+          "M584 X0 Y1 Z2\nM9999 ; rrflint: disable=RRF101\nM9998 ; note\nM9997 ; rrflint: disable=line-too-long\n");
   auto o = run_rrflint(t.root(), "check p --format concise --no-inline-suppressions");
   CHECK(lines_of(o.out).size() == 3);
   CHECK_FALSE(contains(o.out, "RRF900"));
@@ -339,17 +342,17 @@ TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppres
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
-  t.write("a/macros/Park Head", "M9992\n");       // extensionless macro with a space, inside card a
+  t.write("a/macros/Park Head", "M9992\n");             // extensionless macro with a space, inside card a
   t.write("b/SYS/config.g", "M584 X0 Y1 Z2\nM9993\n");  // any case
-  t.write("c/sys/homeall.g", "M9994\n");          // a sys folder without config.g
-  t.write("d/macros/wipe", "M9995\n");            // a macros folder on its own
-  t.write("misc/test.g", "M9996\n");              // a lone file
-  t.write("misc/readme.txt", "M9997\n");          // not G-code
-  t.write("misc/notes", "M9998\n");               // no extension, not under macros/
+  t.write("c/sys/homeall.g", "M9994\n");                // a sys folder without config.g
+  t.write("d/macros/wipe", "M9995\n");                  // a macros folder on its own
+  t.write("misc/test.g", "M9996\n");                    // a lone file
+  t.write("misc/readme.txt", "M9997\n");                // not G-code
+  t.write("misc/notes", "M9998\n");                     // no extension, not under macros/
   auto o = run_rrflint(t.root(), "check . --format concise");
   CHECK(o.code == 1);
-  for (const char* want : {"a/sys/config.g:2:1", "a/macros/Park Head:1:1", "b/SYS/config.g:2:1",
-                                  "c/sys/homeall.g:1:1", "d/macros/wipe:1:1", "misc/test.g:1:1"})
+  for (const char* want : {"a/sys/config.g:2:1", "a/macros/Park Head:1:1", "b/SYS/config.g:2:1", "c/sys/homeall.g:1:1",
+                           "d/macros/wipe:1:1", "misc/test.g:1:1"})
     CHECK(contains(o.out, want));
   CHECK_FALSE(contains(o.out, "readme.txt"));
   CHECK_FALSE(contains(o.out, "misc/notes"));
@@ -374,7 +377,8 @@ TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, howev
   }
 }
 
-TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude", "[cli][walk]") {
+TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude",
+          "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
   t.write("a/sys/scratch.g", "M9992\n");
@@ -406,16 +410,17 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files onl
   CHECK(contains(o.out, "gen/out.g"));
 }
 
-TEST_CASE("cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns; git and the built-in matcher agree",
-          "[cli][walk]") {
+TEST_CASE(
+    "cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns; git and the built-in matcher agree",
+    "[cli][walk]") {
   TempTree t;
   t.write("sub/.gitignore", "# comment\nkeep/*\n!keep/this.g\n/anch.g\ndironly/\n");
-  t.write("sub/keep/this.g", "M9991\n");    // ignored by keep/*, then un-ignored
-  t.write("sub/keep/that.g", "M9992\n");    // ignored
-  t.write("sub/anch.g", "M9993\n");         // ignored: anchored to sub/
-  t.write("sub/x/anch.g", "M9994\n");       // not: the pattern is anchored
-  t.write("sub/dironly/f.g", "M9995\n");    // ignored with its folder
-  t.write("sub/dironly.g", "M9996\n");      // not: dironly/ matches folders only
+  t.write("sub/keep/this.g", "M9991\n");  // ignored by keep/*, then un-ignored
+  t.write("sub/keep/that.g", "M9992\n");  // ignored
+  t.write("sub/anch.g", "M9993\n");       // ignored: anchored to sub/
+  t.write("sub/x/anch.g", "M9994\n");     // not: the pattern is anchored
+  t.write("sub/dironly/f.g", "M9995\n");  // ignored with its folder
+  t.write("sub/dironly.g", "M9996\n");    // not: dironly/ matches folders only
   auto check_walk = [&](const std::string& label) {
     INFO(label);
     const std::string out = run_rrflint(t.root(), "check sub --format concise").out;
@@ -451,8 +456,9 @@ TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url 
 
 TEST_CASE("docs: docs/rules and the README rule list are up to date with the rule registry", "[docs]") {
   const fs::path dir = fs::path(RRFLINT_SOURCE_DIR) / "docs/rules";
-  const std::string fix = "regenerate with: rrflint rule --generate-docs docs/rules --readme README.md "
-                          "(or cmake --build <dir> --target rrflint_docs)";
+  const std::string fix =
+      "regenerate with: rrflint rule --generate-docs docs/rules --readme README.md "
+      "(or cmake --build <dir> --target rrflint_docs)";
   // The first line that differs, so a failure says where without dumping both pages.
   auto first_difference = [](const std::string& have, const std::string& want) {
     auto a = lines_of(have), b = lines_of(want);
@@ -509,7 +515,8 @@ TEST_CASE("ci: the problem matcher in .github reads every concise line", "[cli][
   CHECK(sm[p["code"].get<int>()] == "RRF101");
   REQUIRE(std::regex_match(ls[1], sm, re));  // an info finding
   CHECK(sm[p["code"].get<int>()] == "RRF900");
-  CHECK(sm[p["message"].get<int>()] == "unused suppression 'unknown-command' in 'disable': no such finding on this line");
+  CHECK(sm[p["message"].get<int>()] ==
+        "unused suppression 'unknown-command' in 'disable': no such finding on this line");
 }
 
 TEST_CASE("cli: machines linted in parallel report exactly what a serial run reports", "[cli]") {
@@ -568,8 +575,8 @@ TEST_CASE("cli: a large file, mapped rather than read, reports what the same byt
   CHECK(mapped.code == 1);
   CHECK(mapped.err == piped.err);
   CHECK(mapped.out == piped.out);
-  CHECK(contains(mapped.out, "big.g:2:1: warning:"));                       // M9999
-  CHECK(contains(mapped.out, "unquoted pin name 'out2'"));                  // the last line
+  CHECK(contains(mapped.out, "big.g:2:1: warning:"));       // M9999
+  CHECK(contains(mapped.out, "unquoted pin name 'out2'"));  // the last line
 }
 
 TEST_CASE("docs links: the default from a build opens an existing page for every rule", "[cli][docs]") {

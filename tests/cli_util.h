@@ -66,10 +66,10 @@ inline std::string shell_quote(const std::string& s) {
 /// `env` is prepended (e.g. "NO_COLOR=1"); GITHUB_ACTIONS and colour variables are cleared first so the
 /// tests do not depend on where they run.
 inline Output run_rrflint(const fs::path& cwd, const std::string& args, const std::string& env = "",
-                      const std::string& stdin_text = "") {
+                          const std::string& stdin_text = "") {
   static int counter = 0;
-  const fs::path base = fs::temp_directory_path() / ("rrflint-cli-" + std::to_string(::getpid()) + "-" +
-                                                     std::to_string(counter++));
+  const fs::path base =
+      fs::temp_directory_path() / ("rrflint-cli-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   const std::string out = base.string() + ".out", err = base.string() + ".err", in = base.string() + ".in";
   std::ofstream(in, std::ios::binary) << stdin_text;
   const std::string cmd = "cd " + shell_quote(cwd.string()) +
@@ -94,6 +94,8 @@ inline Output run_rrflint(const fs::path& cwd, const std::string& args, const st
   return o;
 }
 
-inline bool contains(const std::string& hay, const std::string& needle) { return hay.find(needle) != std::string::npos; }
+inline bool contains(const std::string& hay, const std::string& needle) {
+  return hay.find(needle) != std::string::npos;
+}
 
 }  // namespace rrflint::test

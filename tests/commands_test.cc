@@ -1,5 +1,5 @@
-// lint/boot/commands: what RRF makes of a command (docs/firmware-behaviour.md: M563 tools, G10 forms, System files), decided
-// once for the model and every rule. Where the answer depends on facts the model does not know, it is Unknown.
+// lint/boot/commands: what RRF makes of a command (docs/firmware-behaviour.md: M563 tools, G10 forms, System files),
+// decided once for the model and every rule. Where the answer depends on facts the model does not know, it is Unknown.
 #include <memory>
 #include <string>
 

@@ -2,8 +2,8 @@
 // and the CLI behaviour that depends on it (check, config, exit codes).
 #include <catch2/catch.hpp>
 
-#include "tests/cli_util.h"
 #include "frontend/config.h"
+#include "tests/cli_util.h"
 
 using namespace rrflint;
 using namespace rrflint::test;
@@ -108,10 +108,10 @@ TEST_CASE("config: errors name the file, line and column", "[config]") {
   e = error_of("extend = \"c.toml\"\n");
   CHECK(contains(e.message, "cycle"));
   // docs-url: a web or file URL of a folder, nothing rrflint cannot append "<name>.md" to.
-  for (const char* bad : {"docs-url = \"docs/rules/\"\n", "docs-url = \"ftp://example.org/\"\n",
-                          "docs-url = \"https:///rules/\"\n", "docs-url = \"file://relative/rules\"\n",
-                          "docs-url = \"https://example.org/a b/\"\n", "docs-url = \"https://example.org/?page=\"\n",
-                          "docs-url = \"\"\n", "docs-url = 3\n"}) {
+  for (const char* bad :
+       {"docs-url = \"docs/rules/\"\n", "docs-url = \"ftp://example.org/\"\n", "docs-url = \"https:///rules/\"\n",
+        "docs-url = \"file://relative/rules\"\n", "docs-url = \"https://example.org/a b/\"\n",
+        "docs-url = \"https://example.org/?page=\"\n", "docs-url = \"\"\n", "docs-url = 3\n"}) {
     INFO(bad);
     e = error_of(bad);
     CHECK(e.line == 1);
@@ -141,7 +141,7 @@ TEST_CASE("globs and path patterns", "[config]") {
   CHECK(glob_match("**/tpost?.g", "printer/sys/tpost1.g"));
   CHECK(glob_match("sys/[tT]free*.g", "sys/Tfree0.g"));
   CHECK_FALSE(glob_match("sys/[!t]*.g", "sys/tfree0.g"));
-  CHECK(pattern_applies("old", "printers/old/sys/config.g"));      // a name at any depth
+  CHECK(pattern_applies("old", "printers/old/sys/config.g"));  // a name at any depth
   CHECK(pattern_applies("*.bak.g", "sys/config.bak.g"));
   CHECK_FALSE(pattern_applies("*.bak.g", "sys/config.g"));
   CHECK(pattern_applies("printers/old", "printers/old/sys/config.g"));  // anchored; a folder covers its files
@@ -220,16 +220,18 @@ TEST_CASE("cli config: `rrflint config` prints settings and where each came from
   fs::create_directories(t / ".git");
   t.write("p/sys/config.g", kBad);
   t.write("base.toml", "fail-on = \"info\"\n");
-  t.write(".rrflint.toml", "extend = \"base.toml\"\nfirmware = \"3.5\"\nignore = [\"RRF101\"]\n[per-file-ignores]\n\"p/macros/**\" = [\"RRF1\"]\n");
+  t.write(".rrflint.toml",
+          "extend = \"base.toml\"\nfirmware = \"3.5\"\nignore = [\"RRF101\"]\n[per-file-ignores]\n\"p/macros/**\" = "
+          "[\"RRF1\"]\n");
   auto o = run_rrflint(t.root(), "config p --board duet2");
   CHECK(o.code == 0);
   CHECK(contains(o.out, "# config file: .rrflint.toml"));
   CHECK(contains(o.out, "#   extends: base.toml"));
   CHECK(contains(o.out, "\"3.5\""));
   CHECK(contains(o.out, "# .rrflint.toml:2"));
-  CHECK(contains(o.out, "# base.toml:1"));     // fail-on
-  CHECK(contains(o.out, "# command line"));    // board
-  CHECK(contains(o.out, "# default"));         // tool-changer
+  CHECK(contains(o.out, "# base.toml:1"));                     // fail-on
+  CHECK(contains(o.out, "# command line"));                    // board
+  CHECK(contains(o.out, "# default"));                         // tool-changer
   CHECK(contains(o.out, "docs-url             = \"file://"));  // the build's default
   t.write("base.toml", "fail-on = \"info\"\ndocs-url = \"https://example.org/r/\"\n");
   o = run_rrflint(t.root(), "config p");

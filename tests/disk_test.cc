@@ -3,8 +3,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "tests/cli_util.h"
 #include "frontend/disk.h"
+#include "tests/cli_util.h"
 
 using namespace rrflint;
 

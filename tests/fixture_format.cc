@@ -54,8 +54,8 @@ bool parse_expect_list(std::string_view s, std::vector<ExpectItem>& out, std::st
     ExpectItem item;
     size_t b = i;
     // Rule names are kebab-case and may hold a version with dots (`m568-before-3.3`).
-    while (i < s.size() && ((s[i] >= 'a' && s[i] <= 'z') || digit(i) || s[i] == '-' ||
-                            (s[i] == '.' && i > b && digit(i + 1))))
+    while (i < s.size() &&
+           ((s[i] >= 'a' && s[i] <= 'z') || digit(i) || s[i] == '-' || (s[i] == '.' && i > b && digit(i + 1))))
       ++i;
     if (i == b) {
       err = i < s.size() ? fmt::format("expected a rule name at '{}'", s.substr(i)) : "expected a rule name";
@@ -126,7 +126,8 @@ ReadExpectations read_expectations(std::string_view text, const std::string& sd_
               ' ');
   }
   if (!pending.empty())
-    r.errors.push_back(fmt::format("{}: an own-line expectation at the end of the file has no line to apply to", where));
+    r.errors.push_back(
+        fmt::format("{}: an own-line expectation at the end of the file has no line to apply to", where));
   return r;
 }
 

@@ -75,9 +75,9 @@ struct CardFile {
 };
 
 struct FixtureCase {
-  std::string rule;   // the rule under test (directory name)
-  std::string name;   // "<rule>/<case>.g" or "<rule>/<case>"
-  std::string label;  // the snapshot header: "<case>.g" or "<case>/"
+  std::string rule;            // the rule under test (directory name)
+  std::string name;            // "<rule>/<case>.g" or "<rule>/<case>"
+  std::string label;           // the snapshot header: "<case>.g" or "<case>/"
   std::filesystem::path path;  // the .g file or the folder
   std::vector<CardFile> files;
   std::map<std::string, std::filesystem::path> fixed;  // sd_path -> its .fixed.g file

@@ -76,8 +76,7 @@ TEST_CASE("expectations in a file: placement and blanking", "[fixture-format]") 
   CHECK(r.expectations[3].line == 5);
   CHECK(r.expectations[3].sd_path == "/sys/config.g");
   REQUIRE(r.errors.size() == 1);
-  CHECK(r.errors[0] ==
-        "fixtures/x/y.g:7: malformed expectation: expected a column number (1 or more) after 'd@'");
+  CHECK(r.errors[0] == "fixtures/x/y.g:7: malformed expectation: expected a column number (1 or more) after 'd@'");
   // Blanked to spaces after the ';', so offsets, lines and columns do not move.
   REQUIRE(r.blanked.size() == text.size());
   CHECK(r.blanked.substr(0, 25) == "M584 X0 Y1 Z2\nG10 P0 X1 ;");
@@ -93,8 +92,8 @@ TEST_CASE("expectations in a file: placement and blanking", "[fixture-format]") 
 TEST_CASE("rrflint-options words", "[fixture-format]") {
   CaseOptions o;
   std::vector<std::string> errors;
-  parse_options_words(" --firmware 3.4.6 --board duet2 --tool-changer --unsafe-fixes --extend-select RRF331 ", o,
-                      "f.g", errors);
+  parse_options_words(" --firmware 3.4.6 --board duet2 --tool-changer --unsafe-fixes --extend-select RRF331 ", o, "f.g",
+                      errors);
   CHECK(errors.empty());
   CHECK(o.lint.firmware == Version::parse("3.4.6"));
   CHECK(o.lint.board == parse_board("duet2"));
@@ -102,5 +101,6 @@ TEST_CASE("rrflint-options words", "[fixture-format]") {
   CHECK(o.unsafe_fixes);
   CHECK(o.lint.extend_select == std::vector<std::string>{"RRF331"});
   parse_options_words("--firmware banana --fix", o, "f.g", errors);
-  CHECK(errors == std::vector<std::string>{"f.g:1: bad --firmware 'banana'", "f.g:1: unknown rrflint-options word '--fix'"});
+  CHECK(errors ==
+        std::vector<std::string>{"f.g:1: bad --firmware 'banana'", "f.g:1: unknown rrflint-options word '--fix'"});
 }

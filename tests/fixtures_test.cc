@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "cli/cli.h"
 #include "lint/engine/linter.h"
@@ -82,8 +82,10 @@ std::map<std::string, std::string> blanked_card(const std::map<std::string, std:
 std::string first_difference(const std::string& want, const std::string& got) {
   const auto wl = split_lines(want), gl = split_lines(got);
   for (size_t n = 0; n < std::max(wl.size(), gl.size()); ++n) {
-    std::string_view w = n < wl.size() ? std::string_view(want).substr(wl[n].first, wl[n].second - wl[n].first) : "<eof>";
-    std::string_view g = n < gl.size() ? std::string_view(got).substr(gl[n].first, gl[n].second - gl[n].first) : "<eof>";
+    std::string_view w =
+        n < wl.size() ? std::string_view(want).substr(wl[n].first, wl[n].second - wl[n].first) : "<eof>";
+    std::string_view g =
+        n < gl.size() ? std::string_view(got).substr(gl[n].first, gl[n].second - gl[n].first) : "<eof>";
     if (w != g) return fmt::format("line {}: expected '{}', got '{}'", n + 1, w, g);
   }
   return "the line endings differ";
@@ -230,12 +232,12 @@ void run_case(FixtureCase& c) {
         also += fmt::format("\n    reported instead at column {}: {}", f.column, f.message);
     FAIL_CHECK(display(c, x.sd_path) << ":" << x.line << ": missing " << x.item.rule << " finding"
                                      << (x.item.column ? " at column " + std::to_string(*x.item.column) : "")
-                                     << (x.item.substring.empty() ? "" : " with \"" + x.item.substring + "\"")
-                                     << also);
+                                     << (x.item.substring.empty() ? "" : " with \"" + x.item.substring + "\"") << also);
   }
   for (size_t i = 0; i < run->findings.size(); ++i) {
     const Finding& f = run->findings[i];
-    if (explained[i] || std::any_of(expected.begin(), expected.end(), [&](const Expectation& x) { return matches(x, f); }))
+    if (explained[i] ||
+        std::any_of(expected.begin(), expected.end(), [&](const Expectation& x) { return matches(x, f); }))
       continue;
     FAIL_CHECK(display(c, f.sd_path) << ":" << f.line << ":" << f.column << ": unexpected " << f.rule << ": "
                                      << f.message);
@@ -410,7 +412,8 @@ TEST_CASE("a file rule that reads the machine is marked whole_card", "[fixtures]
     for (const char* h : {"lex_common.h", "tool_helpers.h", "macro_common.h"})
       if (text.find(h) != std::string::npos) {
         const std::string header = read(dir / h);
-        for (size_t at = header.find("FileContext& cx"); at != std::string::npos; at = header.find("FileContext& cx", at + 1))
+        for (size_t at = header.find("FileContext& cx"); at != std::string::npos;
+             at = header.find("FileContext& cx", at + 1))
           reads = reads || header.find("cx.machine", at) < header.find("\n}", at);
       }
     CHECK(reads == r->whole_card);

@@ -139,14 +139,14 @@ TEST_CASE("graph: cycles are reported and not followed", "[graph]") {
       {"/sys/b.g", "M98 P\"a.g\"\nM98 P\"b.g\"\nM83\n"},
   });
   CHECK(boot(*b) == ">/sys/config.g(boot) M98 >/sys/a.g(M98) M98 >/sys/b.g(M98) M98 M98 M83 < < <");
-  CHECK(events(*b) ==
-        std::vector<std::string>{"cycle /sys/a.g at /sys/b.g:0", "cycle /sys/b.g at /sys/b.g:1"});
+  CHECK(events(*b) == std::vector<std::string>{"cycle /sys/a.g at /sys/b.g:0", "cycle /sys/b.g at /sys/b.g:1"});
 }
 
 TEST_CASE("graph: the nesting limit depends on the version", "[graph]") {
   // config.g uses one level: 10 levels from 3.4, 7 for 3.01-3.3.
   std::map<std::string, std::string> files{{"/sys/config.g", "M98 P\"n1.g\"\n"}};
-  for (int i = 1; i < 12; ++i) files["/sys/n" + std::to_string(i) + ".g"] = "M98 P\"n" + std::to_string(i + 1) + ".g\"\n";
+  for (int i = 1; i < 12; ++i)
+    files["/sys/n" + std::to_string(i) + ".g"] = "M98 P\"n" + std::to_string(i + 1) + ".g\"\n";
   files["/sys/n12.g"] = "M83\n";
   auto deepest = [](const Built& b) {
     int d = 0;
@@ -184,8 +184,12 @@ TEST_CASE("graph: config-override.g runs at the M501, runonce.g after config.g",
 TEST_CASE("graph: T runs tfree, tpre, tpost unless P says otherwise", "[graph]") {
   std::map<std::string, std::string> files{
       {"/sys/config.g", "T0\nT1\nT1\nT-1\nT1 P0\nT0 P2\nT\nT{global.t}\n"},
-      {"/sys/tfree0.g", "M83\n"}, {"/sys/tpre0.g", "M83\n"}, {"/sys/tpost0.g", "M83\n"},
-      {"/sys/tfree1.g", "M83\n"}, {"/sys/tpre1.g", "M83\n"}, {"/sys/tpost1.g", "M83\n"},
+      {"/sys/tfree0.g", "M83\n"},
+      {"/sys/tpre0.g", "M83\n"},
+      {"/sys/tpost0.g", "M83\n"},
+      {"/sys/tfree1.g", "M83\n"},
+      {"/sys/tpre1.g", "M83\n"},
+      {"/sys/tpost1.g", "M83\n"},
   };
   auto b = build(files);
   CHECK(boot(*b) ==
@@ -246,8 +250,14 @@ TEST_CASE("graph: the node table decodes runs and whole nodes alike, at any id",
   uint32_t index = 0;
   for (int k = 0; k < 200; ++k) {
     const uint32_t len = k % 7 == 0 ? 5000 : static_cast<uint32_t>(k % 5);
-    Node c{NodeKind::Command, k % 3 == 0 ? CallKind::M98 : CallKind::Boot, k % 4 == 1, static_cast<uint16_t>(1 + k % 2),
-           static_cast<uint32_t>(k % 3), index, static_cast<NodeId>(k), kNoNode};
+    Node c{NodeKind::Command,
+           k % 3 == 0 ? CallKind::M98 : CallKind::Boot,
+           k % 4 == 1,
+           static_cast<uint16_t>(1 + k % 2),
+           static_cast<uint32_t>(k % 3),
+           index,
+           static_cast<NodeId>(k),
+           kNoNode};
     if (k % 2) {
       table.push_commands(c, len);  // a stretch at once,
     } else {
@@ -280,7 +290,8 @@ TEST_CASE("graph: the node table decodes runs and whole nodes alike, at any id",
   }
   CHECK(bad == 0);
   // find_if visits every node in order from anywhere, with the same values.
-  for (NodeId from : {NodeId{0}, NodeId{1}, NodeId{4095}, NodeId{4096}, NodeId{12345}, static_cast<NodeId>(want.size() - 1)}) {
+  for (NodeId from :
+       {NodeId{0}, NodeId{1}, NodeId{4095}, NodeId{4096}, NodeId{12345}, static_cast<NodeId>(want.size() - 1)}) {
     NodeId expect = from;
     size_t wrong = 0;
     const NodeId hit = table.find_if(from, static_cast<NodeId>(want.size()), [&](NodeId id, const Node& n) {
@@ -344,19 +355,19 @@ TEST_CASE("graph: Enter and Leave link to their call site", "[graph]") {
 
 TEST_CASE("graph: SD paths join and fold the way RRF's CombineName does", "[graph]") {
   auto r = [](std::string_view dir, std::string_view name) { return resolve_sd_path(dir, name).value_or("<none>"); };
-  CHECK(r("/sys", "tpost0.g") == "/sys/tpost0.g");            // the plain case
+  CHECK(r("/sys", "tpost0.g") == "/sys/tpost0.g");  // the plain case
   CHECK(r("/sys", "macros/park.g") == "/sys/macros/park.g");
-  CHECK(r("/sys", "/macros/park.g") == "/macros/park.g");     // absolute
-  CHECK(r("/sys", "0:/macros/park.g") == "/macros/park.g");   // volume 0
+  CHECK(r("/sys", "/macros/park.g") == "/macros/park.g");    // absolute
+  CHECK(r("/sys", "0:/macros/park.g") == "/macros/park.g");  // volume 0
   CHECK(r("/sys", "0:macros/park.g") == "/macros/park.g");
-  CHECK(r("/sys", "1:/x.g") == "<none>");                     // another volume
-  CHECK(r("/sys", "../macros/park.g") == "/macros/park.g");   // folded
+  CHECK(r("/sys", "1:/x.g") == "<none>");                    // another volume
+  CHECK(r("/sys", "../macros/park.g") == "/macros/park.g");  // folded
   CHECK(r("/sys", "./a/./b.g") == "/sys/a/b.g");
   CHECK(r("/sys", "a//b.g") == "/sys/a/b.g");
   CHECK(r("/sys/", "a.g") == "/sys/a.g");
   CHECK(r("/", "a.g") == "/a.g");
   CHECK(r("/sys/sub", "..") == "/sys");
-  CHECK(r("/sys", "a..b.g") == "/sys/a..b.g");                // dots inside a name are a name
+  CHECK(r("/sys", "a..b.g") == "/sys/a..b.g");  // dots inside a name are a name
   bool outside = false;
   CHECK_FALSE(resolve_sd_path("/sys", "../../x.g", &outside));
   CHECK(outside);
@@ -368,7 +379,8 @@ TEST_CASE("lint: threads report the same for files the graph loads while file ru
   // rule) wait for it. Run with parts of a few bytes, so that this small card takes the parallel path.
   auto lint = [](unsigned threads) {
     MemoryReader reader;
-    reader.add("/sys/config.g", "M98 P\"/gcodes/start.g\"\nM117 \"x\"\nG1 X1 (note) Y2 ; rrflint: disable=RRF999\nM4321\n");
+    reader.add("/sys/config.g",
+               "M98 P\"/gcodes/start.g\"\nM117 \"x\"\nG1 X1 (note) Y2 ; rrflint: disable=RRF999\nM4321\n");
     reader.add("/sys/homeall.g", "G1 X1 'a' ; text\nM4322\n");
     reader.add("/gcodes/start.g", "M4323 ; not a command\nG1 X(1) Y1\nM117 \"it's\"\nG1 X1e5\n");
     LintOptions o;
@@ -391,6 +403,6 @@ TEST_CASE("lint: threads report the same for files the graph loads while file ru
   };
   CHECK(has("/gcodes/start.g", "RRF101"));  // unknown-command in the file the graph loaded
   CHECK(has("/sys/homeall.g", "RRF101"));
-  CHECK(has("/sys/config.g", "RRF901"));    // a suppression of an unknown rule
+  CHECK(has("/sys/config.g", "RRF901"));  // a suppression of an unknown rule
   for (unsigned threads : {2u, 3u}) CHECK(lint(threads) == serial);
 }

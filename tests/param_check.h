@@ -33,14 +33,14 @@ inline std::string param_mismatch(const ParsedFile& pf, const Command& c) {
   return "";
 }
 
-
 /// Why ParsedFile::block_commands disagrees with the block flag of each command's line; empty when they agree.
 inline std::string block_commands_mismatch(const ParsedFile& pf) {
   std::vector<bool> in_range(pf.commands.size(), false);
   uint32_t prev_end = 0;
   for (size_t k = 0; k < pf.block_commands.size(); ++k) {
     auto [a, b] = pf.block_commands[k];
-    if (a >= b || b > pf.commands.size() || (k > 0 && a <= prev_end)) return "block range " + std::to_string(k) + " is out of order\n";
+    if (a >= b || b > pf.commands.size() || (k > 0 && a <= prev_end))
+      return "block range " + std::to_string(k) + " is out of order\n";
     for (uint32_t i = a; i < b; ++i) in_range[i] = true;
     prev_end = b;
   }
@@ -55,7 +55,10 @@ inline std::string block_commands_mismatch(const ParsedFile& pf) {
 /// the short path for simple lines) must give the same text.
 inline std::string parse_dump(const ParsedFile& pf) {
   std::string out;
-  auto num = [&](uint64_t v) { out += std::to_string(v); out += ' '; };
+  auto num = [&](uint64_t v) {
+    out += std::to_string(v);
+    out += ' ';
+  };
   auto span = [&](Span s) { out += std::to_string(s.begin) + '-' + std::to_string(s.end) + ' '; };
   for (const Line& l : pf.lines) {
     out += "L ";
@@ -82,7 +85,8 @@ inline std::string parse_dump(const ParsedFile& pf) {
     }
     out += '\n';
   }
-  for (const ParseError& e : pf.errors) out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
+  for (const ParseError& e : pf.errors)
+    out += "E " + std::to_string(e.span.begin) + '-' + std::to_string(e.span.end) + ' ' + e.message + '\n';
   for (Span s : pf.semicolon_cuts) out += "S " + std::to_string(s.begin) + '-' + std::to_string(s.end) + '\n';
   for (uint32_t l : pf.prefilters.rich_lines) out += "R " + std::to_string(l) + '\n';
   for (uint32_t l : pf.prefilters.paren_lines) out += "( " + std::to_string(l) + '\n';

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "lint/syntax/parser.h"
 #include "tests/param_check.h"
@@ -297,7 +297,9 @@ TEST_CASE("parser: command words", "[parser]") {
 }
 
 TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[parser]") {
-  CHECK(errors("X10 Y20") == std::vector<std::string>{"0: Bad command: 'X10 Y20': a line must start with G, M or T (axis words alone repeat the last move only in CNC or laser mode, after M453 or M452)"});
+  CHECK(errors("X10 Y20") ==
+        std::vector<std::string>{"0: Bad command: 'X10 Y20': a line must start with G, M or T (axis words alone repeat "
+                                 "the last move only in CNC or laser mode, after M453 or M452)"});
   CHECK(errors("IF true") ==
         std::vector<std::string>{"0: Bad command: 'IF true': meta-command keywords must be lowercase"});
   CHECK(errors("Echo \"x\"").size() == 1);
@@ -466,9 +468,11 @@ TEST_CASE("parser: the commands inside blocks, as ranges", "[parser]") {
 
 // Stored line length (firmware-behaviour.md#lines-and-line-endings).
 TEST_CASE("parser: stored line length", "[parser]") {
-  auto stored = [](std::string text, ParseOptions o = {}) { return parse_text(std::move(text), o).pf.lines[0].stored_length; };
+  auto stored = [](std::string text, ParseOptions o = {}) {
+    return parse_text(std::move(text), o).pf.lines[0].stored_length;
+  };
   CHECK(stored("G1 X10") == 6);
-  CHECK(stored("    G1 X10") == 6);         // indentation is not stored
+  CHECK(stored("    G1 X10") == 6);          // indentation is not stored
   CHECK(stored("\tG1 X10 ; comment") == 7);  // the blank before ';' is stored, the comment is not
   CHECK(stored("N100 G1 X10*99") == 6);      // neither the line number nor the checksum
   CHECK(stored("M117 \"a;b\"") == 10);       // quoted text is stored
@@ -508,17 +512,72 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
   // the word, lists with and without a blank before ':', G/M letters that start a new command, words without a
   // number, commands that take the rest of the line, lowercase, tabs, indentation, 64- and 65-byte lines, mode
   // switches, repeated letters and comments.
-  const std::vector<std::string> pieces = {
-      "G1 X10 Y20", "G1 X80E420", "G1E5 X1", "G59.3E1", "G1 X1e5Y2", "G1 X1 E-2 E3", "M92 X80:80 Y1:2", "M92 X80 :80",
-      "M584 X0.1:0.2 E:3", "G1 X1 M400 G4 S1", "G1 X1 g4 S1", "T-1", "T", "T0 P0", "T-", "G X1", "M", "G1.5.3 X1",
-      "G-1 X2", "M98 Pmacro.g", "M117 hello world", "M550 PPrinter 1", "M23 file.g", "m563 P0", "g1 X1",
-      "G1 X1 ; comment", "G1 X1;c", "G1 X1\t; tab", "\tG1 X1", "  G1 X1", "    M400 ; note", " ; indented comment",
-      "G1 X1.2.3", "G1 X+1 Y-.5", "G1 X1 X2", "G1 'a1", "G1 X'", "G1 X1 *5", "N1 G1 X1", "M453", "M451", "M452",
-      "G1 X1 (cnc) Y2", "M291 P\"a\"", "G1 X{1}", "G1 X1 }", "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L15",
-      "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L1", "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L",
-      "G1 X999999999999 Y-99999999999", "G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G",
-      "G1 X\xc3\xa9", "G1 X1 \x01", "if true", "  G1 X1 ; in a block", "else", "  M400", "", "G1 X1 ", "G1 X1  ",
-      "M92 X80:", "M92 X:1", "G1 X1E", "G1 XE1", "G1 X1 E", "G10 P0 X0 Y0 Z0 G10 P1"};
+  const std::vector<std::string> pieces = {"G1 X10 Y20",
+                                           "G1 X80E420",
+                                           "G1E5 X1",
+                                           "G59.3E1",
+                                           "G1 X1e5Y2",
+                                           "G1 X1 E-2 E3",
+                                           "M92 X80:80 Y1:2",
+                                           "M92 X80 :80",
+                                           "M584 X0.1:0.2 E:3",
+                                           "G1 X1 M400 G4 S1",
+                                           "G1 X1 g4 S1",
+                                           "T-1",
+                                           "T",
+                                           "T0 P0",
+                                           "T-",
+                                           "G X1",
+                                           "M",
+                                           "G1.5.3 X1",
+                                           "G-1 X2",
+                                           "M98 Pmacro.g",
+                                           "M117 hello world",
+                                           "M550 PPrinter 1",
+                                           "M23 file.g",
+                                           "m563 P0",
+                                           "g1 X1",
+                                           "G1 X1 ; comment",
+                                           "G1 X1;c",
+                                           "G1 X1\t; tab",
+                                           "\tG1 X1",
+                                           "  G1 X1",
+                                           "    M400 ; note",
+                                           " ; indented comment",
+                                           "G1 X1.2.3",
+                                           "G1 X+1 Y-.5",
+                                           "G1 X1 X2",
+                                           "G1 'a1",
+                                           "G1 X'",
+                                           "G1 X1 *5",
+                                           "N1 G1 X1",
+                                           "M453",
+                                           "M451",
+                                           "M452",
+                                           "G1 X1 (cnc) Y2",
+                                           "M291 P\"a\"",
+                                           "G1 X{1}",
+                                           "G1 X1 }",
+                                           "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L15",
+                                           "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L1",
+                                           "G1 X1 Y2 Z3 U4 V5 W6 A7 B8 C9 D10 H11 I12 J13 K14 L",
+                                           "G1 X999999999999 Y-99999999999",
+                                           "G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G4 G",
+                                           "G1 X\xc3\xa9",
+                                           "G1 X1 \x01",
+                                           "if true",
+                                           "  G1 X1 ; in a block",
+                                           "else",
+                                           "  M400",
+                                           "",
+                                           "G1 X1 ",
+                                           "G1 X1  ",
+                                           "M92 X80:",
+                                           "M92 X:1",
+                                           "G1 X1E",
+                                           "G1 XE1",
+                                           "G1 X1 E",
+                                           "G10 P0 X0 Y0 Z0 G10 P1"};
   std::string text;
   for (size_t i = 0; i < 3000; ++i) {
     text += pieces[(i * 7 + i / 11) % pieces.size()];
@@ -527,7 +586,8 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
   }
   for (const std::string& p : pieces) text += p + "\n";
   text += pieces[0];  // the last line, with no terminator and no 64 bytes after it
-  for (ParseOptions o : {ParseOptions{}, ParseOptions{.cnc_mode = true}, ParseOptions{.threads = 3, .part_bytes = 500}}) {
+  for (ParseOptions o :
+       {ParseOptions{}, ParseOptions{.cnc_mode = true}, ParseOptions{.threads = 3, .part_bytes = 500}}) {
     const std::string fast = test::parse_dump(parse_text(text, o).pf);
     o.fast_lines = false;
     const std::string full = test::parse_dump(parse_text(text, o).pf);
@@ -547,8 +607,9 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
     CHECK(std::vector<uint32_t>(pre.apostrophe_lines.begin(), pre.apostrophe_lines.end()) == std::vector<uint32_t>{4});
     // The lines whose comment holds a ':': after code, alone at column 0, indented (a blank line to RRF), after a
     // checksum; not a ':' in the code.
-    Parsed c = parse_text("G1 X1 ; a: b\n  ; b:\nM83 ; c\n; c:\nG1 X2;d:\nG1 X1:2 ; e\nN1 G1 X1*12 ; f:\nM117 \"a:b\"\n",
-                          ParseOptions{.fast_lines = fast});
+    Parsed c =
+        parse_text("G1 X1 ; a: b\n  ; b:\nM83 ; c\n; c:\nG1 X2;d:\nG1 X1:2 ; e\nN1 G1 X1*12 ; f:\nM117 \"a:b\"\n",
+                   ParseOptions{.fast_lines = fast});
     const LineSet& colons = c.pf.prefilters.colon_comment_lines;
     CHECK(std::vector<uint32_t>(colons.begin(), colons.end()) == std::vector<uint32_t>{0, 1, 3, 4, 6});
   }
@@ -559,7 +620,8 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
       std::ifstream in(e.path(), std::ios::binary);
       const std::string t{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
       INFO(e.path().string());
-      CHECK(test::parse_dump(parse_text(t).pf) == test::parse_dump(parse_text(t, ParseOptions{.fast_lines = false}).pf));
+      CHECK(test::parse_dump(parse_text(t).pf) ==
+            test::parse_dump(parse_text(t, ParseOptions{.fast_lines = false}).pf));
       ++files;
     }
   CHECK(files > 100);
@@ -683,7 +745,7 @@ TEST_CASE("parser: commands by code", "[parser]") {
     CHECK(list('M', 563) == std::vector<uint32_t>{0, 3});
     CHECK(list('G', 1) == std::vector<uint32_t>{1, 4, 7});
     CHECK(list('T', 5) == std::vector<uint32_t>{2, 5});  // every T, whatever the number
-    CHECK(list('M', 1024).empty());  // beyond the index: not listed
+    CHECK(list('M', 1024).empty());                      // beyond the index: not listed
     CHECK(p.pf.with_code('G', 10).empty());
     CHECK(p.pf.with_code('M', 1).empty());  // a code the file does not use
     CHECK(p.pf.prefilters.any_exponent);

@@ -7,9 +7,9 @@
 //   full disk             a 64 KiB tmpfs in a private mount namespace (unshare -m) when the system allows it,
 //                         else a folder nobody may write to (run as nobody): both make the write fail
 //   changed during a run  write_atomic (the writer seam) called directly with stale text
-#include <catch2/catch.hpp>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <catch2/catch.hpp>
 
 #include <set>
 #include <string>
@@ -123,11 +123,20 @@ TEST_CASE("matrix: nothing to lint is an error, never a pass", "[cli][matrix]") 
   CHECK(o.out.empty());
 }
 
-TEST_CASE("matrix: a card whose config.g cannot be linted is an error; the other cards are still reported", "[cli][matrix]") {
+TEST_CASE("matrix: a card whose config.g cannot be linted is an error; the other cards are still reported",
+          "[cli][matrix]") {
   TempTree t;
   t.write("good/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");  // one RRF101 warning
-  t.write("bin/sys/config.g", std::string("\x7f" "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0\x3e\0\x01\0\0\0", 24) + repeat(std::string("\0\x01", 2), 64));
-  t.write("utf16/sys/config.g", std::string("\xff\xfeM\0" "5\0" "8\0" "4\0 \0X\0" "0\0\n\0", 18));
+  t.write("bin/sys/config.g", std::string("\x7f"
+                                          "ELF\x02\x01\x01\0\0\0\0\0\0\0\0\0\x03\0\x3e\0\x01\0\0\0",
+                                          24) +
+                                  repeat(std::string("\0\x01", 2), 64));
+  t.write("utf16/sys/config.g", std::string("\xff\xfeM\0"
+                                            "5\0"
+                                            "8\0"
+                                            "4\0 \0X\0"
+                                            "0\0\n\0",
+                                            18));
   t.write("empty/sys/config.g", "");
   SECTION("binary") {
     auto o = run_guarded(t.root(), "check bin");
@@ -263,10 +272,12 @@ TEST_CASE("matrix: macro cycles and chains give one finding per cause", "[cli][m
   CHECK(o.code == 1);
   CHECK(lines_count(o.out, "\"code\": \"RRF502\"") == 1);
   o = run_guarded(t.root(), "check cy --firmware 3.5");
-  CHECK(lines_count(o.out, "runs the next file of the cycle here") == 2);  // a.g -> b.g, b.g -> c.g; c.g -> a.g is the finding
+  CHECK(lines_count(o.out, "runs the next file of the cycle here") ==
+        2);  // a.g -> b.g, b.g -> c.g; c.g -> a.g is the finding
   std::string chain;
   t.write("ch/sys/config.g", "M98 P\"m0.g\"\n");
-  for (int i = 0; i < 2000; ++i) t.write("ch/sys/m" + std::to_string(i) + ".g", "M98 P\"m" + std::to_string(i + 1) + ".g\"\n");
+  for (int i = 0; i < 2000; ++i)
+    t.write("ch/sys/m" + std::to_string(i) + ".g", "M98 P\"m" + std::to_string(i + 1) + ".g\"\n");
   t.write("ch/sys/m2000.g", "G4 S0\n");
   o = run_guarded(t.root(), "check ch --firmware 3.5 --format concise");
   CHECK(o.code == 1);
@@ -315,16 +326,18 @@ TEST_CASE("matrix: stdin and lone files", "[cli][matrix]") {
   CHECK_FALSE(contains(o.err, "note:"));
 }
 
-TEST_CASE("matrix: exclusions: a folder named on purpose is linted; --force-exclude leaves it out, and exits 0 only "
-          "when every path was left out",
-          "[cli][matrix][walk]") {
+TEST_CASE(
+    "matrix: exclusions: a folder named on purpose is linted; --force-exclude leaves it out, and exits 0 only "
+    "when every path was left out",
+    "[cli][matrix][walk]") {
   TempTree t;
   t.write(".gitignore", "old/\n");
   t.write("old/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");
   t.write("new/sys/config.g", kGood);
   t.write(".rrflint.toml", "exclude = [\"draft\"]\n");
   t.write("draft/sys/config.g", "M584 X0 Y1 Z2\nM9999\n");
-  if (std::system(("git -C " + shell_quote(t.root().string()) + " init -q 2>/dev/null").c_str()) != 0) t.write(".git/HEAD", "");
+  if (std::system(("git -C " + shell_quote(t.root().string()) + " init -q 2>/dev/null").c_str()) != 0)
+    t.write(".git/HEAD", "");
   auto o = run_guarded(t.root(), "check old --format concise");  // gitignored, named explicitly: linted
   CHECK(o.code == 1);
   CHECK(contains(o.out, "RRF101"));
@@ -421,10 +434,10 @@ TEST_CASE("matrix: --fix never writes a read-only file, through a link out of th
     t.write("p/sys/config.g", before);
     Output o;
     if (tmpfs) {
-      const std::string script =
-          "mount -t tmpfs -o size=64k tmpfs p/sys && printf '%s' " + shell_quote(before) +
-          " > p/sys/config.g && (dd if=/dev/zero of=p/sys/fill bs=4k 2>/dev/null; true) && " +
-          shell_quote(RRFLINT_BINARY) + " check p --fix --format concise; echo \"rc=$?\"; cat p/sys/config.g";
+      const std::string script = "mount -t tmpfs -o size=64k tmpfs p/sys && printf '%s' " + shell_quote(before) +
+                                 " > p/sys/config.g && (dd if=/dev/zero of=p/sys/fill bs=4k 2>/dev/null; true) && " +
+                                 shell_quote(RRFLINT_BINARY) +
+                                 " check p --fix --format concise; echo \"rc=$?\"; cat p/sys/config.g";
       o = run_shell(t.root(), "timeout 60 unshare -m sh -c " + shell_quote(script));
       CHECK(contains(o.out, "rc=2"));
       CHECK(contains(o.err, "No space left on device"));
@@ -458,10 +471,12 @@ TEST_CASE("write_atomic: refuses a file that changed since it was read, and keep
   struct stat st {};
   ::stat(p.c_str(), &st);
   CHECK((st.st_mode & 0777) == 0640);
-  for (const auto& e : fs::directory_iterator(t / "sys")) CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
+  for (const auto& e : fs::directory_iterator(t / "sys"))
+    CHECK_FALSE(contains(e.path().filename().string(), ".rrflint-"));
 }
 
-TEST_CASE("apply_fixes: overlapping fixes are never applied together; a file's line ending is kept", "[cli][matrix][fix]") {
+TEST_CASE("apply_fixes: overlapping fixes are never applied together; a file's line ending is kept",
+          "[cli][matrix][fix]") {
   SourceManager sm;
   const SourceFile& f = sm.add("config.g", "/sys/config.g", TextBuffer(std::string("G1 X0 Y0\r\nG1 X1\r\n")));
   auto diag = [&](uint32_t b, uint32_t e, std::string with) {
@@ -475,13 +490,15 @@ TEST_CASE("apply_fixes: overlapping fixes are never applied together; a file's l
   const std::vector<Diagnostic> diags = {diag(3, 5, "X5"), diag(3, 8, "Z9"), diag(17, 17, "M400\n")};
   std::map<FileId, std::string> texts;
   std::map<FileId, size_t> per_file;
-  const size_t n = cli::apply_fixes(sm, diags, cli::FixOptions{}, [](FileId) { return true; }, texts, &per_file);
+  const size_t n = cli::apply_fixes(
+      sm, diags, cli::FixOptions{}, [](FileId) { return true; }, texts, &per_file);
   CHECK(n == 2);
   CHECK(per_file[f.id()] == 2);
   CHECK(texts[f.id()] == "G1 X5 Y0\r\nG1 X1\r\nM400\r\n");
   // A file the run may not write gets no edit at all.
   texts.clear();
-  CHECK(cli::apply_fixes(sm, diags, cli::FixOptions{}, [](FileId) { return false; }, texts) == 0);
+  CHECK(cli::apply_fixes(
+            sm, diags, cli::FixOptions{}, [](FileId) { return false; }, texts) == 0);
   CHECK(texts.empty());
 }
 
@@ -536,5 +553,5 @@ TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load 
   r = lint_machine(sm2, reader, builtin_rules(), lo);
   REQUIRE(r.machine->problems().size() == 1);
   CHECK(r.machine->problems()[0].sd_path == "/sys/config.g");  // the CLI makes this an error of the card (exit 2)
-  CHECK(r.machine->unit_count() == 1);                            // tools.g is still linted, as an entry
+  CHECK(r.machine->unit_count() == 1);                         // tools.g is still linted, as an entry
 }

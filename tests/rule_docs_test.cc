@@ -17,11 +17,11 @@
 #include <string_view>
 #include <vector>
 
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
-#include "lint/render/rule_docs.h"
 #include "lint/engine/rule.h"
+#include "lint/render/rule_docs.h"
 #include "rules/registry.h"
 #include "tests/fixture_format.h"
 #include "tests/fixture_lint.h"
@@ -39,7 +39,7 @@ enum class Section { Example, UseInstead };
 
 struct DocBlock {
   Section section = Section::Example;
-  int index = 0;        // 1-based, per section kind
+  int index = 0;         // 1-based, per section kind
   size_t docs_line = 0;  // of the opening fence, 1-based in the docs string
   bool no_test = false;
   std::string bad_tag;  // a fence word the test does not know
@@ -72,7 +72,7 @@ std::vector<DocBlock> doc_blocks(std::string_view docs) {
     }
     if (line.starts_with("## ")) {
       const std::string_view title = line.substr(3);
-      section = title.starts_with("Example")      ? std::optional(Section::Example)
+      section = title.starts_with("Example")       ? std::optional(Section::Example)
                 : title.starts_with("Use instead") ? std::optional(Section::UseInstead)
                                                    : std::nullopt;
       continue;
@@ -213,13 +213,15 @@ TEST_CASE("docs: every Example fires its rule and every Use instead stays silent
 
 TEST_CASE("docs: doc blocks split into files at their file markers", "[docs]") {
   std::vector<std::string> problems;
-  auto card = block_card("; rrflint-options: --firmware 3.2\nM563 P0 S\"T0\"\nT0\n; file: sys/tpost0.g\nG1 X0\n"
-                         "; file: /macros/park.g\nG1 Y0\n",
-                         problems);
+  auto card = block_card(
+      "; rrflint-options: --firmware 3.2\nM563 P0 S\"T0\"\nT0\n; file: sys/tpost0.g\nG1 X0\n"
+      "; file: /macros/park.g\nG1 Y0\n",
+      problems);
   CHECK(problems.empty());
-  CHECK(card == std::map<std::string, std::string>{{"/sys/config.g", "; rrflint-options: --firmware 3.2\nM563 P0 S\"T0\"\nT0\n"},
-                                                   {"/sys/tpost0.g", "G1 X0\n"},
-                                                   {"/macros/park.g", "G1 Y0\n"}});
+  CHECK(card == std::map<std::string, std::string>{
+                    {"/sys/config.g", "; rrflint-options: --firmware 3.2\nM563 P0 S\"T0\"\nT0\n"},
+                    {"/sys/tpost0.g", "G1 X0\n"},
+                    {"/macros/park.g", "G1 Y0\n"}});
   card = block_card("\n; file: sys/tpost0.g\nG1 X0\n", problems);
   CHECK(card == std::map<std::string, std::string>{{"/sys/tpost0.g", "G1 X0\n"}});
   card = block_card("G1 X0\n; file: sys/config.g\nG1 Y0\n", problems);
@@ -227,8 +229,9 @@ TEST_CASE("docs: doc blocks split into files at their file markers", "[docs]") {
   CHECK(file_marker("G1 X0 ; file: x.g").empty());  // a marker is a line of its own
   CHECK(file_marker("  ;file: sys/tfree0.g ") == "/sys/tfree0.g");
 
-  const auto blocks = doc_blocks("## Example\n```gcode\nT0\n```\n```gcode no-test\nsketch\n```\n## Fix safety\n"
-                                 "```gcode\nignored\n```\n## Use instead\n```gcode\nT0 P0\n```\n");
+  const auto blocks = doc_blocks(
+      "## Example\n```gcode\nT0\n```\n```gcode no-test\nsketch\n```\n## Fix safety\n"
+      "```gcode\nignored\n```\n## Use instead\n```gcode\nT0 P0\n```\n");
   REQUIRE(blocks.size() == 3);
   CHECK((blocks[0].text == "T0\n" && !blocks[0].no_test && blocks[0].index == 1 && blocks[0].docs_line == 2));
   CHECK((blocks[1].no_test && blocks[1].index == 2));

@@ -6,10 +6,10 @@
 #include <set>
 #include <sstream>
 
-#include "tests/cli_util.h"
-#include "lint/render/render.h"
 #include "lint/engine/rule.h"
+#include "lint/render/render.h"
 #include "rules/registry.h"
+#include "tests/cli_util.h"
 
 using namespace rrflint;
 using namespace rrflint::test;
@@ -23,8 +23,8 @@ struct Sample {
   SourceManager sm;
   std::vector<Diagnostic> diags;
   Sample() {
-    const SourceFile& cfg = sm.add("printer/sys/config.g", "/sys/config.g",
-                                   "M584 X0 Y1 Z2\nG10 P1 X0 Y0\nM563 P1 D0 H1\nM9999 ; odd\n");
+    const SourceFile& cfg =
+        sm.add("printer/sys/config.g", "/sys/config.g", "M584 X0 Y1 Z2\nG10 P1 X0 Y0\nM563 P1 D0 H1\nM9999 ; odd\n");
     const SourceFile& standby = sm.add("printer/sys/all standby.g", "/sys/all standby.g", "M9998\nM9997\n");
     Diagnostic a;
     a.code = "RRF301";
@@ -188,8 +188,9 @@ TEST_CASE("sarif: valid against the SARIF 2.1.0 schema", "[sarif][schema]") {
     return;
   }
   if (std::system("/usr/bin/python3 -c 'import jsonschema' >/dev/null 2>&1") != 0) {
-    WARN("SKIPPED: SARIF schema validation: /usr/bin/python3 with jsonschema not available "
-         "(scripts/setup.sh --test installs python3-jsonschema)");
+    WARN(
+        "SKIPPED: SARIF schema validation: /usr/bin/python3 with jsonschema not available "
+        "(scripts/setup.sh --test installs python3-jsonschema)");
     return;
   }
   TempTree t;
@@ -268,7 +269,8 @@ TEST_CASE("sarif: helpUri only for a web docs base, and never an informationUri"
     }
   }
   json doc = sarif_of(s, "/repo", "/repo", "http://intranet/rrflint/rules");
-  CHECK(doc["runs"][0]["tool"]["driver"]["rules"][0]["helpUri"].get<std::string>().starts_with("http://intranet/rrflint/rules/"));
+  CHECK(doc["runs"][0]["tool"]["driver"]["rules"][0]["helpUri"].get<std::string>().starts_with(
+      "http://intranet/rrflint/rules/"));
   CHECK_FALSE(doc["runs"][0]["tool"]["driver"].contains("informationUri"));
 }
 
@@ -344,7 +346,6 @@ TEST_CASE("json-lines: one object per line, the same objects as json", "[json]")
   o.docs_base = kWebDocs;
   std::ostringstream with_base;
   render_json(with_base, s.sm, s.diags, o);
-  CHECK(json::parse(with_base.str())["diagnostics"][0]["url"] ==
-        rule_url(kWebDocs, "g10-tool-before-definition"));
+  CHECK(json::parse(with_base.str())["diagnostics"][0]["url"] == rule_url(kWebDocs, "g10-tool-before-definition"));
   CHECK(doc["diagnostics"][0]["notes"][0]["end_column"] == 6);
 }

@@ -1,15 +1,15 @@
 // Suppression comments (lint/engine/suppress.cc): scopes, names, reasons, RRF900/RRF901 and their fixes,
 // --no-inline-suppressions, per-file ignores, and the edits of --add-suppressions.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include <map>
 #include <string>
 #include <vector>
 
 #include "lint/engine/linter.h"
-#include "rules/registry.h"
 #include "lint/engine/suppress.h"
+#include "rules/registry.h"
 
 using namespace rrflint;
 
@@ -121,8 +121,8 @@ TEST_CASE("enable names the rule it closes; a bare enable closes every range", "
 }
 
 TEST_CASE("disable-file anywhere covers the whole file, and only that file", "[suppress]") {
-  auto r = lint({{"/sys/config.g", "M9999\nM98 P\"/macros/m.g\"\n; rrflint: disable-file=all\n"},
-                 {"/macros/m.g", "M9998\n"}});
+  auto r = lint(
+      {{"/sys/config.g", "M9999\nM98 P\"/macros/m.g\"\n; rrflint: disable-file=all\n"}, {"/macros/m.g", "M9998\n"}});
   CHECK(r->found() == V{"/macros/m.g:1 RRF101"});
 }
 
@@ -136,8 +136,8 @@ TEST_CASE("no-inline-suppressions: ignores every directive and reports nothing a
 TEST_CASE("RRF900 reports a suppression that suppresses nothing, only for rules of this run", "[suppress]") {
   auto r = lint(
       "G1 X0 ; rrflint: disable=unknown-command\n"
-      "G1 Y0 ; rrflint: disable=line-too-long\n"        // not enabled in this run: not counted
-      "M9999 ; rrflint: disable=unknown-command\n");    // used
+      "G1 Y0 ; rrflint: disable=line-too-long\n"      // not enabled in this run: not counted
+      "M9999 ; rrflint: disable=unknown-command\n");  // used
   CHECK(r->found() == V{"/sys/config.g:1 RRF900"});
   const Diagnostic& d = r->only("RRF900");
   CHECK(d.severity == Severity::Info);
@@ -268,7 +268,8 @@ TEST_CASE("parse_directives resolves scopes", "[suppress]") {
   CHECK(f.slice(ds[2].reason) == "range");
 }
 
-TEST_CASE("suppression_edits: append, merge into an existing directive, file level for lines without code", "[suppress]") {
+TEST_CASE("suppression_edits: append, merge into an existing directive, file level for lines without code",
+          "[suppress]") {
   SourceManager sm;
   const SourceFile& f = sm.add("x.g", "/sys/x.g",
                                "; header\r\n"

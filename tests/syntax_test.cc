@@ -1,7 +1,7 @@
 // File-level syntax findings with every rule on: a CR-only file reports nothing but RRF107 after line 1 (on
 // targets where CR does not end a line), and a byte-order mark is one finding, not also a syntax error.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include <string>
 #include <vector>
@@ -46,6 +46,7 @@ TEST_CASE("syntax: a byte-order mark is one finding", "[syntax]") {
 }
 
 TEST_CASE("syntax: invalid UTF-8 is one finding per file", "[syntax]") {
-  CHECK(findings("; 60\xB0\x43\nM117 \"60\xB0\x43\"\nM117 \"ok \xC3\xA4\"\n", "3.5") == std::vector<std::string>{"1:RRF119"});
+  CHECK(findings("; 60\xB0\x43\nM117 \"60\xB0\x43\"\nM117 \"ok \xC3\xA4\"\n", "3.5") ==
+        std::vector<std::string>{"1:RRF119"});
   CHECK(findings("; 60\xC2\xB0\x43\nM550 P\"Drucker \xC3\xA4\"\n", "3.5").empty());
 }

@@ -1,4 +1,5 @@
-// Value reading (docs/firmware-behaviour.md#numbers-and-lists, #strings): get_int/get_float/get_string, lists, driver ids.
+// Value reading (docs/firmware-behaviour.md#numbers-and-lists, #strings): get_int/get_float/get_string, lists, driver
+// ids.
 #include <cmath>
 #include <memory>
 #include <string>
@@ -128,9 +129,9 @@ TEST_CASE("values: driver ids", "[values]") {
 TEST_CASE("values: strings", "[values]") {
   CHECK(unquote("\"plain\"") == "plain");
   CHECK(unquote("\"say \"\"hi\"\"\"") == "say \"hi\"");
-  CHECK(unquote("\"Bob's\"") == "Bobs");        // 'x lower-cases x and drops the apostrophe
+  CHECK(unquote("\"Bob's\"") == "Bobs");  // 'x lower-cases x and drops the apostrophe
   CHECK(unquote("\"'Tool 'A\"") == "tool a");
-  CHECK(unquote("\"it''s\"") == "it's");        // '' is one apostrophe
+  CHECK(unquote("\"it''s\"") == "it's");         // '' is one apostrophe
   CHECK(unquote("\"'1 and '\"") == "'1 and '");  // ' before a non-letter is kept
   CHECK(unquote("raw") == "raw");
 

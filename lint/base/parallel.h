@@ -58,7 +58,8 @@ void run_tasks(size_t n, unsigned threads, First&& first, Task&& task) {
 template <class Task>
 void run_tasks(size_t n, unsigned threads, Task&& task) {
   // The calling thread takes tasks at once: one new thread fewer than tasks.
-  detail::run_pool(n, std::min<size_t>(threads > 1 ? threads - 1 : 0, n > 0 ? n - 1 : 0), [] {}, task);
+  detail::run_pool(
+      n, std::min<size_t>(threads > 1 ? threads - 1 : 0, n > 0 ? n - 1 : 0), [] {}, task);
 }
 
 }  // namespace rrflint

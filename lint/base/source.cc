@@ -18,7 +18,11 @@ namespace {
 enum : unsigned { kSawCr = 1, kSawNul = 2, kSawDel = 4, kSawHigh = 8 };
 
 unsigned saw(char c) {
-  return c == '\r' ? kSawCr : c == '\0' ? kSawNul : c == 0x7f ? kSawDel : static_cast<unsigned char>(c) >= 0x80 ? kSawHigh : 0u;
+  return c == '\r'                               ? kSawCr
+         : c == '\0'                             ? kSawNul
+         : c == 0x7f                             ? kSawDel
+         : static_cast<unsigned char>(c) >= 0x80 ? kSawHigh
+                                                 : 0u;
 }
 
 // Appends the start of every line after an LF in [b, e) to `out`; returns the kSaw* bits of the other bytes met
@@ -31,7 +35,8 @@ unsigned index_lf(const char* base, size_t b, size_t e, std::vector<uint32_t>& o
                 del = _mm_set1_epi8(0x7f);
   for (; i + 16 <= e; i += 16) {
     const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(base + i));
-    const __m128i other = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, cr), _mm_cmpeq_epi8(v, nul)), _mm_cmpeq_epi8(v, del));
+    const __m128i other =
+        _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, cr), _mm_cmpeq_epi8(v, nul)), _mm_cmpeq_epi8(v, del));
     if (_mm_movemask_epi8(other))
       for (size_t k = 0; k < 16; ++k) seen |= saw(base[i + k]);
     if (_mm_movemask_epi8(v)) seen |= kSawHigh;  // a byte of 0x80 or more

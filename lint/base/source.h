@@ -69,7 +69,7 @@ class TextBuffer {
  public:
   TextBuffer() = default;
   TextBuffer(std::string s) : own_(std::move(s)) {}  // NOLINT: implicit, as bytes were strings before
-  TextBuffer(const char* s) : own_(s) {}               // NOLINT
+  TextBuffer(const char* s) : own_(s) {}             // NOLINT
   /// Takes over `size` bytes mapped at `data`; unmapped when the last copy goes.
   static TextBuffer mapped(const char* data, size_t size);
   const char* data() const { return map_ ? map_.get() : own_.data(); }

@@ -14,9 +14,7 @@ const auto start = std::chrono::steady_clock::now();
 
 const bool kEnabled = std::getenv("RRFLINT_TRACE") != nullptr;
 
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
+double now_ms() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); }
 
 void Scope::report() const {
   std::fprintf(stderr, "took  %8.2f ms  %s %.*s\n", now_ms() - start_, what_, static_cast<int>(detail_.size()),

@@ -40,8 +40,7 @@ G10Form g10_form(const ParsedFile& pf, const Command& c, const MachineState* s, 
   }
   if (pf.find(c, 'P') || pf.find(c, 'R') || pf.find(c, 'S'))
     return only_p_and_l(pf, c) ? G10Form::Report : G10Form::Tool;
-  if (fw >= kRrf3_3 && fw < kRrf3_5 && pf.find(c, 'F'))
-    return G10Form::Tool;  // 3.3–3.4.x count F as well
+  if (fw >= kRrf3_3 && fw < kRrf3_5 && pf.find(c, 'F')) return G10Form::Tool;  // 3.3–3.4.x count F as well
   return by_axes(pf, c, s);
 }
 

@@ -1,7 +1,7 @@
 #include "lint/boot/firmware.h"
 
-#include <cctype>
 #include <fmt/format.h>
+#include <cctype>
 
 namespace rrflint {
 
@@ -18,7 +18,8 @@ std::optional<Version> Version::parse(std::string_view s) {
   auto num = [&](size_t& i, uint32_t& out) {
     size_t b = i;
     out = 0;
-    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])) && i - b < 5) out = out * 10 + uint32_t(s[i++] - '0');
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])) && i - b < 5)
+      out = out * 10 + uint32_t(s[i++] - '0');
     return i > b;
   };
   size_t i = 0;
@@ -52,7 +53,8 @@ std::optional<Version> Version::parse(std::string_view s) {
     while (k < rest.size() && (rest[k] == '.' || rest[k] == '-')) ++k;
     uint32_t pn = 0;
     size_t b = k;
-    while (k < rest.size() && std::isdigit(static_cast<unsigned char>(rest[k]))) pn = pn * 10 + uint32_t(rest[k++] - '0');
+    while (k < rest.size() && std::isdigit(static_cast<unsigned char>(rest[k])))
+      pn = pn * 10 + uint32_t(rest[k++] - '0');
     if (k != rest.size() || (k == b && false)) return std::nullopt;
     v.stage = st;
     v.pre_num = static_cast<uint8_t>(pn > 255 ? 255 : pn);
@@ -74,9 +76,12 @@ std::string_view board_name(Board b) {
 
 std::optional<Board> parse_board(std::string_view s) {
   std::string l;
-  for (char c : s) if (c != ' ' && c != '_') l += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (l == "duet2" || l == "duet2wifi" || l == "duet2ethernet" || l == "duetwifi" || l == "duetethernet") return Board::Duet2;
-  if (l == "duet3-6hc" || l == "duet3" || l == "6hc" || l == "mb6hc" || l == "6xd" || l == "duet3-6xd" || l == "mb6xd") return Board::Duet3_6HC;
+  for (char c : s)
+    if (c != ' ' && c != '_') l += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (l == "duet2" || l == "duet2wifi" || l == "duet2ethernet" || l == "duetwifi" || l == "duetethernet")
+    return Board::Duet2;
+  if (l == "duet3-6hc" || l == "duet3" || l == "6hc" || l == "mb6hc" || l == "6xd" || l == "duet3-6xd" || l == "mb6xd")
+    return Board::Duet3_6HC;
   if (l == "duet3-mini" || l == "mini5+" || l == "mini" || l == "duet3mini") return Board::Duet3_Mini;
   if (l == "maestro" || l == "duet2maestro") return Board::Maestro;
   if (l == "unknown" || l == "auto") return Board::Unknown;
@@ -144,8 +149,7 @@ std::optional<Version> parse_target_version(std::string_view text, std::string* 
   while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
   auto v = Version::parse(text);
   if (!v || v->major < 1) {
-    if (error)
-      *error = fmt::format("'{}' is not a firmware version rrflint knows (known: {})", text, known_versions());
+    if (error) *error = fmt::format("'{}' is not a firmware version rrflint knows (known: {})", text, known_versions());
     return std::nullopt;
   }
   if (*v > kLatestVersion) {

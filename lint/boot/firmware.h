@@ -71,7 +71,8 @@ struct BoardLimits {
   int max_extruders;
   int max_axes_plus_extruders;
 };
-/// MaxAxes / MaxExtruders / MaxAxesPlusExtruders (docs/firmware-behaviour.md#board-limits). Unknown board: the most permissive.
+/// MaxAxes / MaxExtruders / MaxAxesPlusExtruders (docs/firmware-behaviour.md#board-limits). Unknown board: the most
+/// permissive.
 BoardLimits board_limits(Board b, Version v);
 
 /// Stored line limit: 255 from 3.4, 200 for 3.1–3.3, 160 before.

@@ -183,7 +183,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   const std::vector<uint32_t>& acts = acting_commands(u);
   const auto& blocks = pf.block_commands;
   auto block = blocks.begin();
-  uint32_t ci = 0;  // the next command to push
+  uint32_t ci = 0;                       // the next command to push
   auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
     while (ci < end) {
       while (block != blocks.end() && block->second <= ci) ++block;

@@ -1,8 +1,8 @@
 #include "lint/boot/infer.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <initializer_list>
-#include <fmt/format.h>
 
 #include "lint/syntax/values.h"
 
@@ -77,8 +77,8 @@ std::optional<Evidence> stated_version(const FileUnit* config) {
           stated = Evidence{Evidence::Kind::Floor, Version(v->major, 0, 0),
                             fmt::format("config.g header states firmware version {}", v->major), loc};
         else
-          stated = Evidence{Evidence::Kind::Stated, *v, fmt::format("config.g header states version {}", v->str()),
-                            loc};
+          stated =
+              Evidence{Evidence::Kind::Stated, *v, fmt::format("config.g header states version {}", v->str()), loc};
         return true;
       }
     }
@@ -120,14 +120,15 @@ MetaEvidence meta_evidence(const Machine& m) {
       if (pf.lines.kind(li) != LineKind::Meta) continue;  // read from the record: most lines are not
       const Line& line = pf.lines[li];
       if (!vars && (line.meta == MetaKind::Var || line.meta == MetaKind::Global || line.meta == MetaKind::Set))
-        vars = Evidence{Evidence::Kind::Floor, Version(3, 3, 0),
-                        fmt::format("'{}' variables need RRF 3.3 or later", meta_keyword(line.meta)), {f, line.code}};
-      if (!meta)
-        meta = Evidence{Evidence::Kind::Floor, kRrf3_1, "meta commands need RRF 3.01 or later",
+        vars = Evidence{Evidence::Kind::Floor,
+                        Version(3, 3, 0),
+                        fmt::format("'{}' variables need RRF 3.3 or later", meta_keyword(line.meta)),
                         {f, line.code}};
+      if (!meta)
+        meta = Evidence{Evidence::Kind::Floor, kRrf3_1, "meta commands need RRF 3.01 or later", {f, line.code}};
       if (!arrays && has_array_literal(pf.text(line.meta_arg)))
-        arrays = Evidence{Evidence::Kind::Floor, kRrf3_5, "array expressions need RRF 3.5 or later",
-                          {f, line.meta_arg}};
+        arrays =
+            Evidence{Evidence::Kind::Floor, kRrf3_5, "array expressions need RRF 3.5 or later", {f, line.meta_arg}};
     }
   }
   return out;
@@ -156,7 +157,9 @@ std::optional<Evidence> m305_evidence(const Machine& m) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
     if (const uint32_t ci = first_of(pf, {305}, any_command); ci != UINT32_MAX)
-      return Evidence{Evidence::Kind::Ceiling, Version(2, 5, 1), "M305 configures heaters the RRF 2 way",
+      return Evidence{Evidence::Kind::Ceiling,
+                      Version(2, 5, 1),
+                      "M305 configures heaters the RRF 2 way",
                       {m.unit(i).source->id(), pf.commands[ci].span}};
   }
   return std::nullopt;
@@ -167,7 +170,8 @@ std::optional<Evidence> m950_evidence(const Machine& m) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
     if (const uint32_t ci = first_of(pf, {950, 308}, any_command); ci != UINT32_MAX)
-      return Evidence{Evidence::Kind::Floor, Version(3, 0, 0),
+      return Evidence{Evidence::Kind::Floor,
+                      Version(3, 0, 0),
                       fmt::format("M{} needs RRF 3.0 or later", pf.commands[ci].number),
                       {m.unit(i).source->id(), pf.commands[ci].span}};
   }
@@ -178,8 +182,7 @@ std::optional<Evidence> m950_evidence(const Machine& m) {
 std::optional<Evidence> extruder_evidence(const Machine& m) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
-    if (first_of(pf, {584}, [&](const Command& c) { return bool(pf.find(c, 'E')); }) != UINT32_MAX)
-      return std::nullopt;
+    if (first_of(pf, {584}, [&](const Command& c) { return bool(pf.find(c, 'E')); }) != UINT32_MAX) return std::nullopt;
   }
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
@@ -193,11 +196,13 @@ std::optional<Evidence> extruder_evidence(const Machine& m) {
       return p && (p->kind == ValueKind::Number || p->kind == ValueKind::List);
     });
     if (d != UINT32_MAX && d < e)
-      return Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2),
+      return Evidence{Evidence::Kind::Ceiling,
+                      Version(3, 2, 2),
                       "tools use extruders but no M584 E creates any (RRF 3.3+ has no default extruder)",
                       {f, pf.commands[d].span}};
     if (e != UINT32_MAX)
-      return Evidence{Evidence::Kind::Ceiling, Version(3, 2, 2),
+      return Evidence{Evidence::Kind::Ceiling,
+                      Version(3, 2, 2),
                       fmt::format("M{} sets E values but no M584 E creates an extruder (RRF 3.3+ has no default "
                                   "extruder)",
                                   pf.commands[e].number),
@@ -219,8 +224,8 @@ void choose_version(Target& t, const std::optional<Evidence>& stated) {
                            series_latest(stated->version) >= floor && series_latest(stated->version) <= ceiling;
   if (floor > ceiling && ceil_ev) {  // (no ceil_ev: a floor above the newest known release, "version 4")
     t.version = series_latest(floor);
-    t.reason = fmt::format("target RRF {}: {} although {}; the newer evidence wins", t.version.str(),
-                           floor_ev->what, ceil_ev->what);
+    t.reason = fmt::format("target RRF {}: {} although {}; the newer evidence wins", t.version.str(), floor_ev->what,
+                           ceil_ev->what);
   } else if (stated_fits) {
     t.version = series_latest(stated->version);
     t.reason = fmt::format("target RRF {}: {}", t.version.str(), stated->what);

@@ -105,12 +105,9 @@ void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
       s.current_tool_set = n.call_site;
       return;
     }
-    case NodeKind::Command:
-      apply_command(s, id, n);
-      return;
+    case NodeKind::Command: apply_command(s, id, n); return;
   }
 }
-
 
 void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) const {
   const FileUnit& u = m_.unit(n.unit);

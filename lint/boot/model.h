@@ -27,11 +27,11 @@ struct Fact {
 };
 
 struct Axis {
-  char letter = 'X';        // 'X'…'D' or lowercase 'a'…'z'
+  char letter = 'X';  // 'X'…'D' or lowercase 'a'…'z'
   std::vector<DriverId> drivers;
   NodeId created = kNoNode;  // kNoNode for the default X, Y, Z
   NodeId drivers_set = kNoNode;
-  bool maybe = false;        // created inside a conditional block
+  bool maybe = false;  // created inside a conditional block
   bool rotational = false;
 };
 
@@ -83,8 +83,8 @@ struct Tool {
   bool spindle = false;  // M563 R
   AxisMap xmap, ymap, zmap;
   std::array<Fact, kMaxAxisSlots> offsets{};  // indexed by physical axis index
-  std::array<bool, kMaxAxisSlots> probed{};    // offset loaded while running M501 (or M585)
-  std::vector<double> active, standby;         // per heater; empty = off (ABS_ZERO)
+  std::array<bool, kMaxAxisSlots> probed{};   // offset loaded while running M501 (or M585)
+  std::vector<double> active, standby;        // per heater; empty = off (ABS_ZERO)
   bool temps_known = true;
   NodeId created = kNoNode;
   NodeId last_configured = kNoNode;  // the last G10/M568/M207/M567 that set something on it

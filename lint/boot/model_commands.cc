@@ -73,7 +73,8 @@ void do_m584(Cx& x) {
       idx = static_cast<int>(s.axes.size()) - 1;
       s.visible_axes = static_cast<int>(s.axes.size());
       s.visible_set = x.id;
-      if (s.axes.size() + static_cast<size_t>(s.extruders) > static_cast<size_t>(lim.max_axes_plus_extruders) && s.extruders > 0)
+      if (s.axes.size() + static_cast<size_t>(s.extruders) > static_cast<size_t>(lim.max_axes_plus_extruders) &&
+          s.extruders > 0)
         --s.extruders;
     }
     Axis& a = s.axes[static_cast<size_t>(idx)];
@@ -135,8 +136,7 @@ void do_m563(Cx& x) {
   auto D = get_int_list(x.pf, x.c, 'D');
   auto H = get_int_list(x.pf, x.c, 'H');
   // Deleting: D-1 H-1.
-  if (D.known() && H.known() && just_minus_one(D.value) && just_minus_one(H.value) &&
-      !x.pf.find(x.c, 'R')) {
+  if (D.known() && H.known() && just_minus_one(D.value) && just_minus_one(H.value) && !x.pf.find(x.c, 'R')) {
     if (x.maybe) {
       if (auto it = s.tools.find(n); it != s.tools.end()) it->second.maybe = true;
     } else {
@@ -227,7 +227,9 @@ void set_workplace(Cx& x) {
   if (slot < 1 || slot > 9) return;
   for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) {
     auto v = get_float(x.pf, x.c, s.axes[static_cast<size_t>(i)].letter);
-    if (v.present()) s.workplaces[static_cast<size_t>(slot)].origin[static_cast<size_t>(i)] = Fact{v.known() ? v.value : 0, v.known() && !x.maybe, x.id};
+    if (v.present())
+      s.workplaces[static_cast<size_t>(slot)].origin[static_cast<size_t>(i)] =
+          Fact{v.known() ? v.value : 0, v.known() && !x.maybe, x.id};
   }
 }
 
@@ -305,7 +307,8 @@ void do_m950(Cx& x) {
         return h;
       })) {
     auto v = get_int(x.pf, x.c, 'H');
-    if (v.known() && s.bed_heater == v.value) { /* defaults come only from M140 after creation */ }
+    if (v.known() && s.bed_heater == v.value) { /* defaults come only from M140 after creation */
+    }
     return;
   }
   if (device('F', s.fans, s.fans_known, [] { return Fan{}; })) return;
@@ -405,7 +408,8 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
     case 584: do_m584(x); break;
     case 563: do_m563(x); break;
     case 568: do_m568(x); break;
-    case 567: case 207: do_tool_touch(x); break;
+    case 567:
+    case 207: do_tool_touch(x); break;
     case 950: do_m950(x); break;
     case 308: do_m308(x); break;
     case 140: do_m140(x, true); break;
@@ -433,7 +437,8 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
     case 451: s.mode = MachineMode::FFF, s.mode_set = id; break;
     case 452: s.mode = MachineMode::Laser, s.mode_set = id; break;
     case 453: s.mode = MachineMode::CNC, s.mode_set = id; break;
-    case 669: case 667: {
+    case 669:
+    case 667: {
       auto K = get_int(x.pf, x.c, 'K');
       if (K.known()) s.kinematics = static_cast<int>(K.value), s.kinematics_set = id;
       break;

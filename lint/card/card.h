@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "lint/syntax/parser.h"
 #include "lint/base/source.h"
 #include "lint/base/strings.h"
+#include "lint/syntax/parser.h"
 
 namespace rrflint {
 
@@ -110,10 +110,9 @@ class Machine {
   unsigned threads_ = 1;
   size_t part_bytes_ = 0;
   bool no_prefilters_ = false;
-  std::map<std::string, bool> listing_;  // lower-cased SD paths
+  std::map<std::string, bool> listing_;                                            // lower-cased SD paths
   mutable std::map<std::pair<char, int32_t>, std::pair<size_t, bool>> code_uses_;  // code -> (units seen, used)
   mutable std::mutex code_uses_mutex_;  // file rules run on several threads (LintOptions::threads)
 };
-
 
 }  // namespace rrflint

@@ -66,9 +66,10 @@ bool parse_keyword(std::string_view text, uint32_t end, uint32_t& p, Directive& 
   else {
     d.bad_keyword = true;
     d.problem = kw.empty() ? std::string("empty suppression directive: write e.g. '; rrflint: disable=RRF101'")
-                           : fmt::format("unknown suppression directive '{}': use disable, disable-next-line, "
-                                         "disable-file or enable",
-                                         text.substr(kw_begin, p - kw_begin));
+                           : fmt::format(
+                                 "unknown suppression directive '{}': use disable, disable-next-line, "
+                                 "disable-file or enable",
+                                 text.substr(kw_begin, p - kw_begin));
     return false;
   }
   return true;
@@ -186,7 +187,8 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
   std::vector<Directive> out;
   const SourceFile& f = *pf.source;
   if (f.line_count() == 0) return out;
-  for (const uint32_t li : pf.prefilters.colon_comment_lines) {  // a directive has a ':'; most comments are prose without one
+  for (const uint32_t li :
+       pf.prefilters.colon_comment_lines) {  // a directive has a ':'; most comments are prose without one
     if (auto d = parse_comment(pf, rules, pf.lines[li])) out.push_back(std::move(*d));
   }
   if (out.empty()) return out;
@@ -200,9 +202,7 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
     for (size_t ei = 0; ei < d.entries.size(); ++ei) {
       SuppressionEntry& e = d.entries[ei];
       switch (d.kind) {
-        case DirectiveKind::Line:
-          e.first_line = e.last_line = d.line;
-          break;
+        case DirectiveKind::Line: e.first_line = e.last_line = d.line; break;
         case DirectiveKind::NextLine: {
           uint32_t n = d.line + 1;
           while (n <= last && !has_code[n]) ++n;
@@ -226,7 +226,8 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
           e.last_line = 0;
           for (auto it = open.begin(); it != open.end();) {
             SuppressionEntry& s = out[it->first].entries[it->second];
-            const bool same = e.all || (e.rule && s.rule == e.rule) || (!e.rule && !s.all && !s.rule && ieq(e.text, s.text));
+            const bool same =
+                e.all || (e.rule && s.rule == e.rule) || (!e.rule && !s.all && !s.rule && ieq(e.text, s.text));
             if (same) {
               s.last_line = d.line;
               e.used = true;  // an enable that closes a range does its job
@@ -243,7 +244,8 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
   return out;
 }
 
-std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, const std::map<uint32_t, std::vector<std::string>>& by_line,
+std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
+                                    const std::map<uint32_t, std::vector<std::string>>& by_line,
                                     std::string_view reason) {
   std::vector<Edit> edits;
   const SourceFile& f = *pf.source;
@@ -270,7 +272,8 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
                                 [&](const SuppressionEntry& e) { return r && entry_names(e, r->meta.code); });
         if (!have) add += (existing->entries.empty() && add.empty() ? "" : ",") + n;
       }
-      if (!add.empty()) edits.push_back(Edit::insert(Location{f.id(), Span{existing->list.end, existing->list.end}}, add));
+      if (!add.empty())
+        edits.push_back(Edit::insert(Location{f.id(), Span{existing->list.end, existing->list.end}}, add));
       continue;
     }
     std::string list;
@@ -287,9 +290,9 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, 
       while (ind < ls.end && blank(text[ind])) ++ind;
       std::string eol(f.terminator(line0));
       if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-      edits.push_back(Edit::insert(Location{f.id(), Span{ls.begin, ls.begin}},
-                                   fmt::format("{}; rrflint: disable-next-line={}{}{}",
-                                               text.substr(ls.begin, ind - ls.begin), list, why, eol)));
+      edits.push_back(Edit::insert(
+          Location{f.id(), Span{ls.begin, ls.begin}},
+          fmt::format("{}; rrflint: disable-next-line={}{}{}", text.substr(ls.begin, ind - ls.begin), list, why, eol)));
       continue;
     }
     uint32_t at = ls.end;

@@ -5,13 +5,14 @@
 #include <set>
 #include <tuple>
 
+#include "lint/base/trace.h"
 #include "lint/engine/schedule.h"
 #include "lint/engine/suppress.h"
-#include "lint/base/trace.h"
 
 namespace rrflint {
 
-std::vector<const Rule*> enabled_rules(const RuleSet& rule_set, const LintOptions& o, std::vector<std::string>* errors) {
+std::vector<const Rule*> enabled_rules(const RuleSet& rule_set, const LintOptions& o,
+                                       std::vector<std::string>* errors) {
   const auto& all = rule_set.all();
   std::set<const Rule*> on;
   auto add = [&](const std::vector<std::string>& names, bool insert) {
@@ -288,8 +289,9 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
   const bool parallel = file_rules_in_parallel(m, options);
   if (parallel) {
-    run_file_rules_parallel(m, res.target, options, rule_set, rules, [&] { run.build(); },
-                            [&](Sink& node_sink) { run.forward_pass(node_sink); }, sink, directives);
+    run_file_rules_parallel(
+        m, res.target, options, rule_set, rules, [&] { run.build(); },
+        [&](Sink& node_sink) { run.forward_pass(node_sink); }, sink, directives);
   } else {
     run.build();
     for (uint32_t i = 0; i < m.unit_count(); ++i) {

@@ -46,7 +46,7 @@ struct LintOptions {
 
 /// Which rules are on, after select/extend/ignore. Unknown names go to `errors`.
 std::vector<const Rule*> enabled_rules(const RuleSet& rules, const LintOptions& o,
-                                      std::vector<std::string>* errors = nullptr);
+                                       std::vector<std::string>* errors = nullptr);
 
 struct MachineResult {
   std::unique_ptr<Machine> machine;

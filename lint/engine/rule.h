@@ -21,13 +21,13 @@ namespace rrflint {
 enum class FixAvailability : uint8_t { None, Sometimes, Always };
 
 struct RuleMeta {
-  std::string_view code;     // "RRF301"
-  std::string_view name;     // "g10-tool-before-definition"
+  std::string_view code;  // "RRF301"
+  std::string_view name;  // "g10-tool-before-definition"
   Severity severity = Severity::Warning;
   bool default_enabled = true;
   FixAvailability fix = FixAvailability::None;
   std::string_view summary;  // one sentence, also the first line of the docs
-  std::string_view docs;     // Markdown: What it does / Why is this bad? / Example / Use instead / Fix safety / References
+  std::string_view docs;  // Markdown: What it does / Why is this bad? / Example / Use instead / Fix safety / References
 };
 
 struct LintOptions;

@@ -48,46 +48,47 @@ void run_file_rules_parallel(const Machine& m, const Target& target, const LintO
   std::vector<std::vector<Directive>> later_directives;  // of the files the graph loaded
   Sink node_sink;
   std::atomic<bool> built{false};
-  run_tasks(sinks.size(), options.threads,
-            [&] {
-              struct Done {  // the waiting tasks go on even if the graph throws (the error is rethrown)
-                std::atomic<bool>& b;
-                ~Done() {
-                  b = true;
-                  b.notify_all();
-                }
-              };
-              {
-                Done done{built};
-                build();
-              }
-              forward_pass(node_sink);
-            },
-            [&](size_t k) {
-              if (k < own.size()) {
-                const FileContext fc{m, *own[k].first, target, options};
-                const trace::Scope time("rule", own[k].second->meta.name);
-                return own[k].second->check_file(fc, sinks[k]);
-              }
-              if (k < n_early) {
-                const trace::Scope time("suppression comments");
-                directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed, rule_set);
-                return;
-              }
-              built.wait(false);
-              if (k < n_early + whole.size()) {
-                const Rule* r = whole[k - n_early];
-                const trace::Scope time("rule", r->meta.name);
-                for (uint32_t i = 0; i < m.unit_count(); ++i)
-                  r->check_file(FileContext{m, m.unit(i), target, options}, sinks[k]);
-                return;
-              }
-              trace::mark("last task started");  // this branch is the last task
-              for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
-                run_file_rules(m, m.unit(i), target, options, rules, sinks[k], false);
-                if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed, rule_set));
-              }
-            });
+  run_tasks(
+      sinks.size(), options.threads,
+      [&] {
+        struct Done {  // the waiting tasks go on even if the graph throws (the error is rethrown)
+          std::atomic<bool>& b;
+          ~Done() {
+            b = true;
+            b.notify_all();
+          }
+        };
+        {
+          Done done{built};
+          build();
+        }
+        forward_pass(node_sink);
+      },
+      [&](size_t k) {
+        if (k < own.size()) {
+          const FileContext fc{m, *own[k].first, target, options};
+          const trace::Scope time("rule", own[k].second->meta.name);
+          return own[k].second->check_file(fc, sinks[k]);
+        }
+        if (k < n_early) {
+          const trace::Scope time("suppression comments");
+          directives[k - own.size()] = parse_directives(loaded[k - own.size()]->parsed, rule_set);
+          return;
+        }
+        built.wait(false);
+        if (k < n_early + whole.size()) {
+          const Rule* r = whole[k - n_early];
+          const trace::Scope time("rule", r->meta.name);
+          for (uint32_t i = 0; i < m.unit_count(); ++i)
+            r->check_file(FileContext{m, m.unit(i), target, options}, sinks[k]);
+          return;
+        }
+        trace::mark("last task started");  // this branch is the last task
+        for (auto i = static_cast<uint32_t>(loaded.size()); i < m.unit_count(); ++i) {
+          run_file_rules(m, m.unit(i), target, options, rules, sinks[k], false);
+          if (options.inline_suppressions) later_directives.push_back(parse_directives(m.unit(i).parsed, rule_set));
+        }
+      });
   trace::mark("tasks joined");
   for (auto& d : later_directives) directives.push_back(std::move(d));
   for (Sink& part : sinks)

@@ -65,9 +65,10 @@ struct FileIgnores {
 // Drops the diagnostics of rules switched off for their file.
 void drop_per_file_ignores(std::vector<Diagnostic>& diags, const FileIgnores& ignored) {
   if (ignored.options.ignored_in_file)
-    diags.erase(std::remove_if(diags.begin(), diags.end(),
-                               [&](const Diagnostic& d) { return d.loc.file != kNoFile && ignored(d.loc.file, d.code); }),
-                diags.end());
+    diags.erase(
+        std::remove_if(diags.begin(), diags.end(),
+                       [&](const Diagnostic& d) { return d.loc.file != kNoFile && ignored(d.loc.file, d.code); }),
+        diags.end());
 }
 
 // The directives of every file that has any, by file. `directives`: see apply_suppressions.
@@ -116,8 +117,7 @@ Fix unused_fix(const SourceFile& src, const Directive& d, const std::vector<cons
   } else {
     std::string kept;
     for (const SuppressionEntry& e : d.entries)
-      if (std::find(unused.begin(), unused.end(), &e) == unused.end())
-        kept += (kept.empty() ? "" : ",") + e.text;
+      if (std::find(unused.begin(), unused.end(), &e) == unused.end()) kept += (kept.empty() ? "" : ",") + e.text;
     fix.edits.push_back(Edit::replace(Location{src.id(), d.list}, kept));
   }
   return fix;
@@ -176,8 +176,9 @@ class SuppressionPass {
         }
         for (const SuppressionEntry& e : d.entries)
           if (!e.rule && !e.all && e.prefix.empty())
-            found.push_back(make(unknown_rule, *fd.unit, e.span,
-                                 fmt::format("unknown rule '{}' in suppression comment{}", e.text, suggestion(e.text, rules_))));
+            found.push_back(
+                make(unknown_rule, *fd.unit, e.span,
+                     fmt::format("unknown rule '{}' in suppression comment{}", e.text, suggestion(e.text, rules_))));
       }
     }
     filter(found);
@@ -271,8 +272,7 @@ class SuppressionPass {
 std::vector<const Rule*> engine_rules() { return {&unused_suppression, &unknown_rule_in_suppression}; }
 
 void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vector<const Rule*>& enabled,
-                        const LintOptions& options,
-                        std::vector<std::vector<Directive>>* directives) {
+                        const LintOptions& options, std::vector<std::vector<Directive>>* directives) {
   Machine& m = *res.machine;
   std::map<FileId, const FileUnit*> units;
   for (uint32_t i = 0; i < m.unit_count(); ++i) units[m.unit(i).source->id()] = &m.unit(i);

@@ -30,24 +30,24 @@ std::string_view directive_keyword(DirectiveKind k);
 
 /// One rule named in a directive, and the lines it covers.
 struct SuppressionEntry {
-  Span span;                  // the name as written
-  std::string text;           // the name as written
-  const Rule* rule = nullptr; // nullptr: unknown, `all` or a code prefix
+  Span span;                   // the name as written
+  std::string text;            // the name as written
+  const Rule* rule = nullptr;  // nullptr: unknown, `all` or a code prefix
   bool all = false;
-  std::string prefix;         // a code prefix such as "rrf3" (lower case), as --select accepts
-  uint32_t first_line = 0;    // 0-based, inclusive; first > last: covers nothing
+  std::string prefix;       // a code prefix such as "rrf3" (lower case), as --select accepts
+  uint32_t first_line = 0;  // 0-based, inclusive; first > last: covers nothing
   uint32_t last_line = 0;
   bool used = false;
 };
 
 struct Directive {
   DirectiveKind kind = DirectiveKind::Line;
-  Span span;          // from the ';' before `rrflint:` to the end of the comment
-  Span keyword;       // "disable", "disable-next-line", …
-  Span list;          // the rule list, trimmed (may be empty)
-  Span reason;        // after ` -- ` or the second ';' (may be empty)
-  uint32_t line = 0;  // 0-based line of the comment
-  bool own_line = false;  // no code on the line
+  Span span;                    // from the ';' before `rrflint:` to the end of the comment
+  Span keyword;                 // "disable", "disable-next-line", …
+  Span list;                    // the rule list, trimmed (may be empty)
+  Span reason;                  // after ` -- ` or the second ';' (may be empty)
+  uint32_t line = 0;            // 0-based line of the comment
+  bool own_line = false;        // no code on the line
   bool starts_comment = false;  // the directive's ';' opens the line's comment
   bool bad_keyword = false;     // `rrflint:` followed by something that is not a directive
   std::string problem;          // why, for RRF901
@@ -65,15 +65,15 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
 /// `directives`, when given, holds parse_directives() of each unit of the machine, by unit index (worked out
 /// beforehand on other threads); otherwise they are parsed here.
 void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vector<const Rule*>& enabled,
-                        const LintOptions& options,
-                        std::vector<std::vector<Directive>>* directives = nullptr);
+                        const LintOptions& options, std::vector<std::vector<Directive>>* directives = nullptr);
 
 /// The edits that add same-line suppressions to `pf`: `by_line` maps 0-based lines to rule names. Each is
 /// appended to its line (after any comment), or merged into a `disable=` directive already on that line. Lines
 /// without code get one `disable-file=` line at the top of the file instead (an own-line `disable=` would open
 /// a range), and a line with a parse error (where an appended `;` could end up inside a string) gets a
 /// `disable-next-line=` line above it. A non-empty `reason` is added after ` -- ` to new directives.
-std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules, const std::map<uint32_t, std::vector<std::string>>& by_line,
+std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
+                                    const std::map<uint32_t, std::vector<std::string>>& by_line,
                                     std::string_view reason);
 
 /// The two rules of the suppression pass itself (their metadata and docs sit beside this file:

@@ -76,7 +76,8 @@ std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix) {
   std::vector<Edit> edits;
   for (const Edit& e : fix.edits)
     if (e.loc.file == file) edits.push_back(e);
-  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.loc.span.begin < b.loc.span.begin; });
+  std::sort(edits.begin(), edits.end(),
+            [](const Edit& a, const Edit& b) { return a.loc.span.begin < b.loc.span.begin; });
   const SourceFile& f = sm.get(file);
   if (f.line_count() == 0) return std::nullopt;
   const uint32_t line0 = f.line_of(std::min(edits.front().loc.span.begin, f.size()));

@@ -63,7 +63,8 @@ struct Paths {
 
 }  // namespace
 
-void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o) {
+void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                   const RenderOptions& o) {
   std::error_code ec;
   Paths path{o.uri_base.empty() ? fs::current_path(ec) : o.uri_base, o.cwd.empty() ? fs::current_path(ec) : o.cwd};
   path.base = path.base.lexically_normal();
@@ -93,8 +94,8 @@ void render_github(std::ostream& os, const SourceManager& sm, const std::vector<
     for (size_t i = 0; i < shown[k]; ++i) {
       const Diagnostic& d = *by_kind[k][i];
       const Range r = range_of(sm, d.loc);
-      std::string props = fmt::format("file={},line={},endLine={}", escape_property(path(sm, d.loc.file)),
-                                      r.start.line, r.end.line);
+      std::string props =
+          fmt::format("file={},line={},endLine={}", escape_property(path(sm, d.loc.file)), r.start.line, r.end.line);
       if (r.start.line == r.end.line)
         props += fmt::format(",col={},endColumn={}", r.start.column, std::max(r.end.column, r.start.column + 1));
       props += ",title=" + escape_property(fmt::format("rrflint {} {}", d.code, d.name));
@@ -109,9 +110,9 @@ void render_github(std::ostream& os, const SourceManager& sm, const std::vector<
                             sanitize(n.message));
       }
       if (d.fix)
-        body += fmt::format("\nhelp: {} ({})", sanitize(d.fix->title),
-                            d.fix->applicability == Applicability::Safe ? "rrflint check --fix"
-                                                                        : "rrflint check --fix --unsafe-fixes");
+        body += fmt::format(
+            "\nhelp: {} ({})", sanitize(d.fix->title),
+            d.fix->applicability == Applicability::Safe ? "rrflint check --fix" : "rrflint check --fix --unsafe-fixes");
       // The annotation is read on github.com: a file:// page of the runner would not open there.
       if (is_web_url(o.docs_base)) body += fmt::format("\n{}", rule_url(o.docs_base, d.name));
       else body += fmt::format("\nrrflint rule {}", d.code);

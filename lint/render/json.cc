@@ -45,7 +45,8 @@ nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std
                        {"end_column", er.end.column},
                        {"replacement", sanitize(e.replacement)}});
     }
-    j["fix"] = {{"applicability", applicability_name(d.fix->applicability)}, {"message", sanitize(d.fix->title)},
+    j["fix"] = {{"applicability", applicability_name(d.fix->applicability)},
+                {"message", sanitize(d.fix->title)},
                 {"edits", edits}};
   } else {
     j["fix"] = nullptr;
@@ -53,7 +54,8 @@ nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std
   return j;
 }
 
-void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o) {
+void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                 const RenderOptions& o) {
   using nlohmann::json;
   json doc;
   doc["version"] = 1;
@@ -61,7 +63,7 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   for (const Diagnostic& d : diags) arr.push_back(diagnostic_json(sm, d, o.docs_base));
   doc["diagnostics"] = arr;
   const Counts c = count(diags);
-  doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings}, {"infos", c.infos},
+  doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings},         {"infos", c.infos},
                     {"fixable", c.fixable}, {"files_with_findings", c.files}, {"files_checked", o.files_checked},
                     {"fixed", o.fixed}};
   os << doc.dump(2, ' ', false, json::error_handler_t::replace) << "\n";

@@ -9,7 +9,8 @@ namespace rrflint {
 void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                        const RenderOptions& o) {
   using nlohmann::json;
-  for (const Diagnostic& d : diags) os << diagnostic_json(sm, d, o.docs_base).dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
+  for (const Diagnostic& d : diags)
+    os << diagnostic_json(sm, d, o.docs_base).dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
 }
 
 }  // namespace rrflint

@@ -47,7 +47,9 @@ std::string temps(const std::vector<double>& v) {
 
 std::string map_str(const MachineState& s, const AxisMap& m) { return m.known ? s.axis_letters(m.bits) : "unknown"; }
 
-std::string axis_name(const Axis& a) { return a.letter >= 'a' ? fmt::format("'{}", a.letter) : std::string(1, a.letter); }
+std::string axis_name(const Axis& a) {
+  return a.letter >= 'a' ? fmt::format("'{}", a.letter) : std::string(1, a.letter);
+}
 
 void table(std::ostream& os, const std::vector<std::vector<std::string>>& rows) {
   if (rows.empty()) return;
@@ -65,7 +67,6 @@ void table(std::ostream& os, const std::vector<std::vector<std::string>>& rows) 
   }
 }
 
-
 // The target, its evidence and the board.
 void render_target(std::ostream& os, const SourceManager& sm, const MachineResult& r) {
   os << "Firmware: " << r.target.reason << "\n";
@@ -79,21 +80,23 @@ void render_target(std::ostream& os, const SourceManager& sm, const MachineResul
 
 // The axes and the extruders.
 void render_axes(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
-  os << fmt::format("\nAxes ({} total, {} visible){}\n", s.axes.size(), s.visible_axes, s.axes_known ? "" : " (partly unknown)");
+  os << fmt::format("\nAxes ({} total, {} visible){}\n", s.axes.size(), s.visible_axes,
+                    s.axes_known ? "" : " (partly unknown)");
   std::vector<std::vector<std::string>> rows{{"index", "axis", "drivers", "kind", "visible", "set at"}};
   for (size_t i = 0; i < s.axes.size(); ++i) {
     const Axis& a = s.axes[i];
     std::string drv;
     for (const auto& d : a.drivers) drv += (drv.empty() ? "" : ":") + d.str();
-    rows.push_back({std::to_string(i), axis_name(a), drv.empty() ? "unknown" : drv, a.rotational ? "rotational" : "linear",
-                    static_cast<int>(i) < s.visible_axes ? "yes" : "hidden",
+    rows.push_back({std::to_string(i), axis_name(a), drv.empty() ? "unknown" : drv,
+                    a.rotational ? "rotational" : "linear", static_cast<int>(i) < s.visible_axes ? "yes" : "hidden",
                     where(r, sm, a.drivers_set != kNoNode ? a.drivers_set : a.created) + (a.maybe ? " (maybe)" : "")});
   }
   table(os, rows);
   os << fmt::format("\nExtruders: {}", s.extruders_known ? std::to_string(s.extruders) : "unknown");
   if (!s.extruder_drivers.empty()) {
     std::string drv;
-    for (size_t i = 0; i < s.extruder_drivers.size(); ++i) drv += fmt::format("{}E{}={}", i ? " " : "", i, s.extruder_drivers[i].str());
+    for (size_t i = 0; i < s.extruder_drivers.size(); ++i)
+      drv += fmt::format("{}E{}={}", i ? " " : "", i, s.extruder_drivers[i].str());
     os << " (" << drv << ", " << where(r, sm, s.extruders_set) << ")";
   }
   os << "\n";
@@ -103,32 +106,42 @@ void render_axes(std::ostream& os, const SourceManager& sm, const MachineResult&
 void render_devices(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << "\nSensors\n";
   std::vector<std::vector<std::string>> rows = {{"sensor", "type", "created at"}};
-  for (const auto& [n, sn] : s.sensors) rows.push_back({std::to_string(n), sn.type, where(r, sm, sn.created) + (sn.maybe ? " (maybe)" : "")});
-  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  for (const auto& [n, sn] : s.sensors)
+    rows.push_back({std::to_string(n), sn.type, where(r, sm, sn.created) + (sn.maybe ? " (maybe)" : "")});
+  if (rows.size() > 1) table(os, rows);
+  else os << "  none\n";
   os << "\nHeaters\n";
   rows = {{"heater", "sensor", "over-temperature monitor", "model", "created at"}};
   for (const auto& [n, h] : s.heaters) {
     std::string mon = h.monitor_installed
-                          ? fmt::format("{} °C ({}, {})", num(h.limit), h.user_monitor ? "M143" : "default", where(r, sm, h.monitor_origin))
+                          ? fmt::format("{} °C ({}, {})", num(h.limit), h.user_monitor ? "M143" : "default",
+                                        where(r, sm, h.monitor_origin))
                           : "NONE (limit 2000 °C)";
-    rows.push_back({std::to_string(n) + (n == s.bed_heater ? " (bed)" : ""), h.sensor >= 0 ? std::to_string(h.sensor) : "-", mon,
-                    h.model_set ? "M307" : "default", where(r, sm, h.created) + (h.maybe ? " (maybe)" : "")});
+    rows.push_back({std::to_string(n) + (n == s.bed_heater ? " (bed)" : ""),
+                    h.sensor >= 0 ? std::to_string(h.sensor) : "-", mon, h.model_set ? "M307" : "default",
+                    where(r, sm, h.created) + (h.maybe ? " (maybe)" : "")});
   }
-  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  if (rows.size() > 1) table(os, rows);
+  else os << "  none\n";
   os << "\nFans\n";
   rows = {{"fan", "created at"}};
-  for (const auto& [n, f] : s.fans) rows.push_back({std::to_string(n), where(r, sm, f.created) + (f.maybe ? " (maybe)" : "")});
-  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  for (const auto& [n, f] : s.fans)
+    rows.push_back({std::to_string(n), where(r, sm, f.created) + (f.maybe ? " (maybe)" : "")});
+  if (rows.size() > 1) table(os, rows);
+  else os << "  none\n";
   os << "\nProbes\n";
   rows = {{"probe", "type", "created at"}};
-  for (const auto& [n, p] : s.probes) rows.push_back({std::to_string(n), std::to_string(p.type), where(r, sm, p.created)});
-  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  for (const auto& [n, p] : s.probes)
+    rows.push_back({std::to_string(n), std::to_string(p.type), where(r, sm, p.created)});
+  if (rows.size() > 1) table(os, rows);
+  else os << "  none\n";
 }
 
 // The tools, those whose M563 failed, and the current tool.
 void render_tools(std::ostream& os, const SourceManager& sm, const MachineResult& r, const MachineState& s) {
   os << fmt::format("\nTools{}\n", s.tools_known ? "" : " (some created with unknown numbers)");
-  std::vector<std::vector<std::string>> rows = {{"tool", "name", "D", "H", "F", "X/Y/Z map", "offsets", "active/standby", "created at"}};
+  std::vector<std::vector<std::string>> rows = {
+      {"tool", "name", "D", "H", "F", "X/Y/Z map", "offsets", "active/standby", "created at"}};
   for (const auto& [n, t] : s.tools) {
     std::string offs;
     for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) {
@@ -136,17 +149,20 @@ void render_tools(std::ostream& os, const SourceManager& sm, const MachineResult
       offs += fmt::format("{}{}{}", offs.empty() ? "" : " ", axis_name(s.axes[static_cast<size_t>(i)]), fact(f));
     }
     NodeId last = t.last_configured;
-    rows.push_back({std::to_string(n) + (t.maybe ? " (maybe)" : ""), t.name.empty() ? "-" : "\"" + sanitize(t.name) + "\"",
-                    t.drives_known ? ints(t.drives) : "?", t.heaters_known ? ints(t.heaters) : "?", ints(t.fans),
+    rows.push_back({std::to_string(n) + (t.maybe ? " (maybe)" : ""),
+                    t.name.empty() ? "-" : "\"" + sanitize(t.name) + "\"", t.drives_known ? ints(t.drives) : "?",
+                    t.heaters_known ? ints(t.heaters) : "?", ints(t.fans),
                     fmt::format("X→{} Y→{} Z→{}", map_str(s, t.xmap), map_str(s, t.ymap), map_str(s, t.zmap)),
                     offs + (last != kNoNode ? fmt::format(" ({})", where(r, sm, last)) : ""),
                     t.temps_known ? temps(t.active) + "/" + temps(t.standby) : "unknown", where(r, sm, t.created)});
   }
-  if (rows.size() > 1) table(os, rows); else os << "  none\n";
+  if (rows.size() > 1) table(os, rows);
+  else os << "  none\n";
   for (const auto& [n, id] : s.failed_tools)
     os << fmt::format("  tool {}: not created, its M563 failed ({})\n", n, where(r, sm, id));
   os << "\nCurrent tool: "
-     << (s.current_tool_known ? (s.current_tool >= 0 ? std::to_string(s.current_tool) : std::string("none")) : std::string("unknown"))
+     << (s.current_tool_known ? (s.current_tool >= 0 ? std::to_string(s.current_tool) : std::string("none"))
+                              : std::string("unknown"))
      << "\n";
 }
 
@@ -166,8 +182,12 @@ void render_workplaces(std::ostream& os, const SourceManager& sm, const MachineR
     if (last == kNoNode) continue;
     rows.push_back({std::to_string(w), kCodes[w], o + " (" + where(r, sm, last) + ")"});
   }
-  if (rows.size() > 1) table(os, rows); else os << "  all at 0 (default)\n";
-  os << "\nMode: " << (s.mode == MachineMode::CNC ? "CNC" : s.mode == MachineMode::Laser ? "laser" : "FFF")
+  if (rows.size() > 1) table(os, rows);
+  else os << "  all at 0 (default)\n";
+  os << "\nMode: "
+     << (s.mode == MachineMode::CNC     ? "CNC"
+         : s.mode == MachineMode::Laser ? "laser"
+                                        : "FFF")
      << fmt::format(", kinematics K{}", s.kinematics)
      << (s.m501 != kNoNode ? fmt::format(", M501 at {}", where(r, sm, s.m501)) : ", no M501") << "\n";
 }
@@ -195,7 +215,9 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
   j["firmware"] = {{"version", r.target.version.str()}, {"given", r.target.version_given}, {"reason", r.target.reason}};
   json ev = json::array();
   for (const Evidence& e : r.target.evidence)
-    ev.push_back({{"what", e.what}, {"file", sanitize(sm.get(e.loc.file).display_path())}, {"line", sm.get(e.loc.file).position(e.loc.span.begin).line}});
+    ev.push_back({{"what", e.what},
+                  {"file", sanitize(sm.get(e.loc.file).display_path())},
+                  {"line", sm.get(e.loc.file).position(e.loc.span.begin).line}});
   j["firmware"]["evidence"] = ev;
   j["board"] = board_name(r.target.board);
   json axes = json::array();
@@ -203,20 +225,33 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
     const Axis& a = s.axes[i];
     json drv = json::array();
     for (auto& d : a.drivers) drv.push_back(d.str());
-    axes.push_back({{"index", i}, {"letter", axis_name(a)}, {"drivers", drv}, {"visible", static_cast<int>(i) < s.visible_axes},
-                    {"rotational", a.rotational}, {"maybe", a.maybe}, {"set_at", at(a.drivers_set != kNoNode ? a.drivers_set : a.created)}});
+    axes.push_back({{"index", i},
+                    {"letter", axis_name(a)},
+                    {"drivers", drv},
+                    {"visible", static_cast<int>(i) < s.visible_axes},
+                    {"rotational", a.rotational},
+                    {"maybe", a.maybe},
+                    {"set_at", at(a.drivers_set != kNoNode ? a.drivers_set : a.created)}});
   }
   j["axes"] = axes;
   json ex = json::array();
   for (auto& d : s.extruder_drivers) ex.push_back(d.str());
-  j["extruders"] = {{"count", s.extruders_known ? json(s.extruders) : json("unknown")}, {"drivers", ex}, {"set_at", at(s.extruders_set)}};
+  j["extruders"] = {{"count", s.extruders_known ? json(s.extruders) : json("unknown")},
+                    {"drivers", ex},
+                    {"set_at", at(s.extruders_set)}};
   json heaters = json::array();
   for (const auto& [n, h] : s.heaters)
-    heaters.push_back({{"heater", n}, {"sensor", h.sensor}, {"monitor", h.monitor_installed}, {"limit", h.limit},
-                       {"user_monitor", h.user_monitor}, {"bed", n == s.bed_heater}, {"created_at", at(h.created)}});
+    heaters.push_back({{"heater", n},
+                       {"sensor", h.sensor},
+                       {"monitor", h.monitor_installed},
+                       {"limit", h.limit},
+                       {"user_monitor", h.user_monitor},
+                       {"bed", n == s.bed_heater},
+                       {"created_at", at(h.created)}});
   j["heaters"] = heaters;
   json sensors = json::array();
-  for (const auto& [n, sn] : s.sensors) sensors.push_back({{"sensor", n}, {"type", sanitize(sn.type)}, {"created_at", at(sn.created)}});
+  for (const auto& [n, sn] : s.sensors)
+    sensors.push_back({{"sensor", n}, {"type", sanitize(sn.type)}, {"created_at", at(sn.created)}});
   j["sensors"] = sensors;
   json fans = json::array();
   for (const auto& [n, f] : s.fans) fans.push_back({{"fan", n}, {"created_at", at(f.created)}});
@@ -227,18 +262,32 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
   json tools = json::array();
   for (const auto& [n, t] : s.tools) {
     json offs = json::object();
-    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) offs[axis_name(s.axes[static_cast<size_t>(i)])] = fj(t.offsets[static_cast<size_t>(i)]);
-    tools.push_back({{"tool", n}, {"name", sanitize(t.name)}, {"drives", t.drives}, {"heaters", t.heaters}, {"fans", t.fans},
-                     {"x_map", map_str(s, t.xmap)}, {"y_map", map_str(s, t.ymap)}, {"z_map", map_str(s, t.zmap)},
-                     {"offsets", offs}, {"active", t.active}, {"standby", t.standby}, {"temperatures_known", t.temps_known},
-                     {"maybe", t.maybe}, {"created_at", at(t.created)}, {"last_configured_at", at(t.last_configured)}});
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
+      offs[axis_name(s.axes[static_cast<size_t>(i)])] = fj(t.offsets[static_cast<size_t>(i)]);
+    tools.push_back({{"tool", n},
+                     {"name", sanitize(t.name)},
+                     {"drives", t.drives},
+                     {"heaters", t.heaters},
+                     {"fans", t.fans},
+                     {"x_map", map_str(s, t.xmap)},
+                     {"y_map", map_str(s, t.ymap)},
+                     {"z_map", map_str(s, t.zmap)},
+                     {"offsets", offs},
+                     {"active", t.active},
+                     {"standby", t.standby},
+                     {"temperatures_known", t.temps_known},
+                     {"maybe", t.maybe},
+                     {"created_at", at(t.created)},
+                     {"last_configured_at", at(t.last_configured)}});
   }
   j["tools"] = tools;
   j["current_tool"] = s.current_tool_known ? json(s.current_tool) : json("unknown");
   json wps = json::array();
   for (int w = 1; w <= 9; ++w) {
     json o = json::object();
-    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i) o[axis_name(s.axes[static_cast<size_t>(i)])] = fj(s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)]);
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
+      o[axis_name(s.axes[static_cast<size_t>(i)])] =
+          fj(s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)]);
     wps.push_back({{"slot", w}, {"origin", o}});
   }
   j["workplaces"] = wps;

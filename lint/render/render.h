@@ -32,11 +32,11 @@ struct RenderOptions {
   /// The rules that exist (SARIF lists them all in tool.driver.rules); null: none listed.
   const RuleSet* rules = nullptr;
   bool color = false;
-  bool show_fix_hint = true;        // the "N fixable with --fix" part of the summary
+  bool show_fix_hint = true;  // the "N fixable with --fix" part of the summary
   bool unsafe_fixes_enabled = false;
-  std::string docs_base;              // where rule pages live, for rule_url(); ends with '/'
+  std::string docs_base;  // where rule pages live, for rule_url(); ends with '/'
   size_t files_checked = 0;
-  size_t fixed = 0;                  // findings fixed by --fix before this report (text summary)
+  size_t fixed = 0;  // findings fixed by --fix before this report (text summary)
   // SARIF: artifact URIs are relative to `uri_base` (the git top-level, else the working directory); display
   // paths are relative to `cwd`. Both absolute; empty means the current directory.
   std::filesystem::path uri_base;
@@ -54,12 +54,18 @@ struct Range {
 };
 Range range_of(const SourceManager& sm, const Location& loc);
 
-void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
-void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o);
+void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                 const RenderOptions& o);
+void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                    const RenderOptions& o);
+void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                 const RenderOptions& o);
+void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                       const RenderOptions& o);
+void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                  const RenderOptions& o);
+void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                   const RenderOptions& o);
 /// One diagnostic as the object `json` and `json-lines` print; its "url" is rule_url(docs_base, name).
 nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std::string_view docs_base);
 

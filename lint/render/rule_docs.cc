@@ -17,12 +17,9 @@ struct Block {
   std::string_view title;
 };
 constexpr Block kBlocks[] = {
-    {'1', "RRF1xx: syntax and lexical traps"},
-    {'2', "RRF2xx: order and existence"},
-    {'3', "RRF3xx: tools, G10 and offsets"},
-    {'4', "RRF4xx: config-override.g and M501"},
-    {'5', "RRF5xx: files and macros"},
-    {'9', "RRF9xx: rrflint itself"},
+    {'1', "RRF1xx: syntax and lexical traps"}, {'2', "RRF2xx: order and existence"},
+    {'3', "RRF3xx: tools, G10 and offsets"},   {'4', "RRF4xx: config-override.g and M501"},
+    {'5', "RRF5xx: files and macros"},         {'9', "RRF9xx: rrflint itself"},
 };
 
 std::string_view fix_word(FixAvailability f) {
@@ -52,9 +49,9 @@ std::string tables(const RuleSet& rules, std::string_view link_prefix, std::stri
     for (const Rule* r : rules.all()) {
       const RuleMeta& m = r->meta;
       if (m.code.size() < 4 || m.code[3] != b.digit) continue;
-      rows += fmt::format("| {} | [{}]({}{}.md) | {} | {} | {} | {} |\n", m.code, m.name, link_prefix, m.name,
-                          severity_name(m.severity), m.default_enabled ? "on" : "off", fix_word(m.fix),
-                          cell(m.summary));
+      rows +=
+          fmt::format("| {} | [{}]({}{}.md) | {} | {} | {} | {} |\n", m.code, m.name, link_prefix, m.name,
+                      severity_name(m.severity), m.default_enabled ? "on" : "off", fix_word(m.fix), cell(m.summary));
     }
     if (rows.empty()) continue;
     out += fmt::format("{} {}\n\n| code | name | severity | default | fix | summary |\n|---|---|---|---|---|---|\n{}\n",
@@ -67,12 +64,14 @@ std::string tables(const RuleSet& rules, std::string_view link_prefix, std::stri
     bool known = false;
     for (const Block& b : kBlocks) known = known || (m.code.size() >= 4 && m.code[3] == b.digit);
     if (!known)
-      rest += fmt::format("| {} | [{}]({}{}.md) | {} | {} | {} | {} |\n", m.code, m.name, link_prefix, m.name,
-                          severity_name(m.severity), m.default_enabled ? "on" : "off", fix_word(m.fix), cell(m.summary));
+      rest +=
+          fmt::format("| {} | [{}]({}{}.md) | {} | {} | {} | {} |\n", m.code, m.name, link_prefix, m.name,
+                      severity_name(m.severity), m.default_enabled ? "on" : "off", fix_word(m.fix), cell(m.summary));
   }
   if (!rest.empty())
-    out += fmt::format("{} Other rules\n\n| code | name | severity | default | fix | summary |\n|---|---|---|---|---|---|\n{}\n",
-                       heading, rest);
+    out += fmt::format(
+        "{} Other rules\n\n| code | name | severity | default | fix | summary |\n|---|---|---|---|---|---|\n{}\n",
+        heading, rest);
   return out;
 }
 
@@ -128,8 +127,9 @@ std::string rule_index(const RuleSet& rules) {
 }
 
 std::string readme_rule_list(const RuleSet& rules) {
-  return fmt::format("\n{} rules; each links to its page under `docs/rules/` (`rrflint rule CODE` prints the same).\n\n{}",
-                     rules.all().size(), tables(rules, "docs/rules/", "###"));
+  return fmt::format(
+      "\n{} rules; each links to its page under `docs/rules/` (`rrflint rule CODE` prints the same).\n\n{}",
+      rules.all().size(), tables(rules, "docs/rules/", "###"));
 }
 
 std::map<std::string, std::string> generated_rule_docs(const RuleSet& rules) {

@@ -131,8 +131,7 @@ std::string_view category_tag(std::string_view code) {
 // of the machine that ran rrflint does not exist (help.markdown carries the page either way).
 json rule_json(const Rule& r, std::string_view docs_base) {
   const RuleMeta& m = r.meta;
-  const std::string md =
-      fmt::format("# {} {}\n\n{}\n{}", m.code, m.name, m.summary, published_docs(m.docs));
+  const std::string md = fmt::format("# {} {}\n\n{}\n{}", m.code, m.name, m.summary, published_docs(m.docs));
   json j = {{"id", m.code},
             {"name", m.name},
             {"shortDescription", {{"text", m.summary}}},
@@ -177,7 +176,8 @@ std::string line_hash(const SourceManager& sm, const Diagnostic& d, std::map<std
 
 }  // namespace
 
-void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o) {
+void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                  const RenderOptions& o) {
   std::error_code ec;
   UriMaker uris;
   uris.cwd = o.cwd.empty() ? fs::current_path(ec) : o.cwd;
@@ -249,9 +249,8 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
       {"columnKind", "unicodeCodePoints"},
       {"results", results},
   };
-  json doc = {{"$schema", "https://json.schemastore.org/sarif-2.1.0.json"},
-              {"version", "2.1.0"},
-              {"runs", json::array({run})}};
+  json doc = {
+      {"$schema", "https://json.schemastore.org/sarif-2.1.0.json"}, {"version", "2.1.0"}, {"runs", json::array({run})}};
   os << doc.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
 }
 

@@ -69,15 +69,16 @@ void snippet(std::ostream& os, const SourceManager& sm, const Location& loc, cha
 
 }  // namespace
 
-void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions& o) {
+void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                 const RenderOptions& o) {
   Style st{o.color};
   std::map<std::string_view, std::string_view> seen;  // code -> name
   for (const Diagnostic& d : diags) {
     const Range r = range_of(sm, d.loc);
     const std::string path = d.loc.file == kNoFile ? "-" : sanitize(sm.get(d.loc.file).display_path());
     os << st(fmt::format("{}:{}:{}:", path, r.start.line, r.start.column), "1") << " "
-       << st(severity_name(d.severity), sev_color(d.severity)) << " "
-       << st(fmt::format("{} {}", d.code, d.name), "1") << ": " << sanitize(d.message)
+       << st(severity_name(d.severity), sev_color(d.severity)) << " " << st(fmt::format("{} {}", d.code, d.name), "1")
+       << ": " << sanitize(d.message)
        << (d.fix && d.fix->applicability == Applicability::Safe ? st(" [*]", "1;32") : "") << "\n";
     snippet(os, sm, d.loc, '^', st, sev_color(d.severity));
     for (const Note& n : d.notes) {
@@ -125,12 +126,15 @@ void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Di
   std::string summary = fmt::format("{}, {}, {} in {}", plural(c.errors, "error"), plural(c.warnings, "warning"),
                                     plural(c.infos, "info"), plural(c.files, "file"));
   if (c.fixable) summary += fmt::format(" ({} fixable with --fix)", c.fixable);
-  else if (c.unsafe_fixable && o.show_fix_hint) summary += fmt::format(" ({} fixable with --fix --unsafe-fixes)", c.unsafe_fixable);
+  else if (c.unsafe_fixable && o.show_fix_hint)
+    summary += fmt::format(" ({} fixable with --fix --unsafe-fixes)", c.unsafe_fixable);
   os << st(summary, "1") << "\n";
-  for (const auto& [code, name] : seen) os << "  " << code << " " << name << ": " << rule_url(o.docs_base, name) << "\n";
+  for (const auto& [code, name] : seen)
+    os << "  " << code << " " << name << ": " << rule_url(o.docs_base, name) << "\n";
 }
 
-void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags, const RenderOptions&) {
+void render_concise(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                    const RenderOptions&) {
   // gcc style. Only the words `error` and `warning` are used, so gcc problem matchers, errorformat and efm
   // pick up every line: an info finding prints as `warning` and says `info` in its tag.
   for (const Diagnostic& d : diags) {

@@ -21,7 +21,7 @@ struct ByteClasses {
   // For the parse-time parameter scan (LineParser::count_params): what a byte can do to a parameter list.
   enum : uint8_t { kPlain, kBlank, kLetter, kQuote, kBrace, kColon, kParen, kApostrophe };
   uint8_t param[256] = {};
-  bool rich[256] = {};        // not a letter, digit, blank, '.', '-', '+' or ':' (ParsedFile::rich_lines)
+  bool rich[256] = {};  // not a letter, digit, blank, '.', '-', '+' or ':' (ParsedFile::rich_lines)
   constexpr ByteClasses() {
     for (int c = 0; c < 256; ++c)
       rich[c] = !((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == ' ' || c == '\t' ||
@@ -109,8 +109,8 @@ RRFLINT_ALWAYS_INLINE inline uint32_t next_code_stop(const char* s, uint32_t n, 
 RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p, uint32_t e) {
 #if defined(__SSE2__)
   return find_class(s, n, p, e, kBytes.rich, [](__m128i v) {
-    return _mm_xor_si128(plain(v, letters(v), digits(v), any_of(v, ' ', '\t')), _mm_set1_epi8(-1));
-  }) < e;
+           return _mm_xor_si128(plain(v, letters(v), digits(v), any_of(v, ' ', '\t')), _mm_set1_epi8(-1));
+         }) < e;
 #else
   return find_class(s, n, p, e, kBytes.rich, 0) < e;
 #endif

@@ -94,8 +94,7 @@ class ExprSyntax {
     p = skip(p);
     const char c = at_char(p);
     switch (c) {
-      case '"':
-        return quoted(p);
+      case '"': return quoted(p);
       case '\'':  // a character literal 'x'
         p += 2;
         if (p > e_ || at_char(p) != '\'') return fail(std::min(p, e_), "expected \"'\"");
@@ -103,12 +102,8 @@ class ExprSyntax {
         return true;
       case '-':
       case '+':
-      case '!':
-        ++p;
-        return operand(p, depth + 1);
-      case '#':
-        p = skip(p + 1);
-        return is_alpha(at_char(p)) ? identifier(p, depth + 1) : operand(p, depth + 1);
+      case '!': ++p; return operand(p, depth + 1);
+      case '#': p = skip(p + 1); return is_alpha(at_char(p)) ? identifier(p, depth + 1) : operand(p, depth + 1);
       case '{':
       case '(':
         ++p;
@@ -137,7 +132,8 @@ class ExprSyntax {
     const char x = static_cast<char>(at_char(p + 1) | 0x20);
     if (t_[p] == '0' && (x == 'x' || x == 'b')) {  // 0x1F, 0b101
       p += 2;
-      while (p < e_ && (x == 'x' ? std::isxdigit(static_cast<unsigned char>(t_[p])) != 0 : (t_[p] == '0' || t_[p] == '1')))
+      while (p < e_ &&
+             (x == 'x' ? std::isxdigit(static_cast<unsigned char>(t_[p])) != 0 : (t_[p] == '0' || t_[p] == '1')))
         ++p;
       return true;
     }
@@ -196,9 +192,7 @@ class ExprSyntax {
 }  // namespace
 
 // `s`, cut to 40 characters for a message.
-std::string clip(std::string_view s) {
-  return s.size() <= 40 ? std::string(s) : fmt::format("{}…", s.substr(0, 40));
-}
+std::string clip(std::string_view s) { return s.size() <= 40 ? std::string(s) : fmt::format("{}…", s.substr(0, 40)); }
 
 // "'…'" or "the end": where an expression error is, for a message.
 std::string error_place(std::string_view t, uint32_t at, uint32_t e) {
@@ -241,7 +235,8 @@ void LineParser::check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e) {
         for (int k = 0; k < 3 && x.at_char(p) == '>'; ++k) ++p;
         const char c = x.at_char(p);
         ok = c == '"' ? x.string(p) : c == '{' ? x.expression(p) : x.fail(p, "expected a string expression");
-        if (is_blank(c)) note = " (standalone RRF wants the file name straight after '>'; DSF in SBC mode skips the blank)";
+        if (is_blank(c))
+          note = " (standalone RRF wants the file name straight after '>'; DSF in SBC mode skips the blank)";
       }
       while (ok) {  // expressions separated by commas; a trailing comma is allowed
         p = x.skip(p);
@@ -257,8 +252,9 @@ void LineParser::check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e) {
   }
   if (ok || x.gave_up) return;
   const std::string where = kw == "set" || kw == "var" || kw == "global" ? fmt::format("the {} of '{}'", what, kw)
-                                                                          : fmt::format("the '{}' {}", kw, what);
-  error(std::min(x.at, e > b ? e - 1 : b), e, fmt::format("{} in {}, {}{}", x.msg, where, error_place(t, x.at, e), note));
+                                                                         : fmt::format("the '{}' {}", kw, what);
+  error(std::min(x.at, e > b ? e - 1 : b), e,
+        fmt::format("{} in {}, {}{}", x.msg, where, error_place(t, x.at, e), note));
 }
 
 }  // namespace rrflint

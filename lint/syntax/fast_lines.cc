@@ -5,11 +5,11 @@
 namespace rrflint {
 
 // The short path for most lines: a line of at most 64 bytes that starts with an upper-case G, M or T after
-// indentation by spaces, and whose code (up to a ';') holds only letters, digits, blanks, '.', '-', '+' and ':' (no blank before a ':').
-// Such a line has no errors, no expression and no string; its bytes are classified 16 at a time into bit masks,
-// and its parameters are the letters that are not an exponent (an E or e after a digit, docs/firmware-behaviour.md#parameters). The
-// records written are those the full path writes (ParseOptions::fast_lines; the tests compare both). Returns false,
-// having written nothing, for any other line.
+// indentation by spaces, and whose code (up to a ';') holds only letters, digits, blanks, '.', '-', '+' and ':' (no
+// blank before a ':'). Such a line has no errors, no expression and no string; its bytes are classified 16 at a time
+// into bit masks, and its parameters are the letters that are not an exponent (an E or e after a digit,
+// docs/firmware-behaviour.md#parameters). The records written are those the full path writes (ParseOptions::fast_lines;
+// the tests compare both). Returns false, having written nothing, for any other line.
 bool LineParser::simple_line(uint32_t b, uint32_t e) {
 #if defined(__SSE2__)
   const char* const s = lex_.t.data();
@@ -45,7 +45,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   const uint32_t code_len = (semi & in_line) ? static_cast<uint32_t>(__builtin_ctzll(semi & in_line)) : len;
   const uint64_t code = below(code_len);
   if ((~allowed & code) || (colon & code & (blank << 1))) return false;
-  const uint64_t solid = ~blank & code;  // not empty: the line starts with a letter
+  const uint64_t solid = ~blank & code;                                // not empty: the line starts with a letter
   const auto ce = static_cast<uint32_t>(64 - __builtin_clzll(solid));  // the trimmed end of the code
   const uint64_t exponent = e_m & (digit << 1);
   const uint64_t param_letters = letter & ~exponent;
@@ -144,10 +144,10 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
 
 // The parameters of `cmd` from `p` (after its word) to the end of the command, counted with their flags, without
 // making a Param: a value runs to the next letter outside quotes and braces, and an E or e after a digit is an
-// exponent (docs/firmware-behaviour.md#parameters). At anything that the lexer reports or decides in a way this scan does not (an
-// unclosed string or expression, a control character in a string, a blank before ':', a `'x` axis, a CNC comment,
-// text before the first letter, a command that takes the rest of the line) it returns false and leaves `cmd` and
-// `p` alone, and lex_params does the work. The tests hold both to the same counts and flags (tests/param_check.h,
+// exponent (docs/firmware-behaviour.md#parameters). At anything that the lexer reports or decides in a way this scan
+// does not (an unclosed string or expression, a control character in a string, a blank before ':', a `'x` axis, a CNC
+// comment, text before the first letter, a command that takes the rest of the line) it returns false and leaves `cmd`
+// and `p` alone, and lex_params does the work. The tests hold both to the same counts and flags (tests/param_check.h,
 // on every fixture, the corpus and the fuzz inputs).
 bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
   if (cmd.number_expr || (cmd.fraction < 0 && takes_rest_of_line(cmd.letter, cmd.number))) return false;
@@ -169,7 +169,7 @@ bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
     if (p >= e) break;
     if (cls[s[p]] != ByteClasses::kLetter) return false;
     const unsigned u = s[p] & 0xDFu;  // upper case
-    if (u == 'G' || u == 'M') break;    // the next command of the line
+    if (u == 'G' || u == 'M') break;  // the next command of the line
     const uint32_t bit = uint32_t{1} << (u - 'A');
     repeated = repeated || (letters & bit);
     letters |= bit;
@@ -178,9 +178,7 @@ bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
     for (++p; (p = next_value_stop(t, n, p, e)) < e;) {
       switch (cls[s[p]]) {
         case ByteClasses::kPlain:
-        case ByteClasses::kBlank:
-          ++p;
-          continue;
+        case ByteClasses::kBlank: ++p; continue;
         case ByteClasses::kLetter:
           if ((s[p] | 0x20u) != 'e' || !is_digit(static_cast<char>(s[p - 1]))) break;
           exponent = true;

@@ -144,10 +144,14 @@ bool Lexer::next_param(const Command& cmd, uint32_t& p, uint32_t e, Param& param
 bool takes_unlettered_string(char letter, int32_t number) {
   if (letter != 'M') return false;
   switch (number) {
-    case 23: case 28: case 30: case 32: case 36: case 117:  // unprecedented strings
+    case 23:
+    case 28:
+    case 30:
+    case 32:
+    case 36:
+    case 117:  // unprecedented strings
       return true;
-    default:
-      return false;
+    default: return false;
   }
 }
 

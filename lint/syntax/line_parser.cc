@@ -89,8 +89,9 @@ void LineParser::parse_logical_line(uint32_t b, uint32_t e, bool after_nul, bool
   if (may_have_del && p < e) {
     if (const void* del = std::memchr(t.data() + p, 0x7f, e - p)) {
       const auto k = static_cast<uint32_t>(static_cast<const char*>(del) - t.data());
-      error(k, e, k > p ? "byte 0x7F: RRF discards the whole line, the text before this byte too"
-                        : "byte 0x7F: RRF discards the whole line");
+      error(k, e,
+            k > p ? "byte 0x7F: RRF discards the whole line, the text before this byte too"
+                  : "byte 0x7F: RRF discards the whole line");
       e = p;
       cut_by_del = true;
     }
@@ -253,8 +254,7 @@ void LineParser::parse_meta(Line& line, MetaKind kind, uint32_t p, uint32_t e) {
     case MetaKind::Abort:  // RRF aborts even when it cannot read the message: only brackets and strings matter
       if (p < e) check_expression(p, e, kw, "arguments");
       break;
-    default:
-      break;
+    default: break;
   }
 }
 
@@ -303,11 +303,12 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
             if (eq && (e - b == w.size() || !is_alpha(t[b + w.size()]))) kw_case = true;
           }
         }
-        error(b, e, kw_case ? fmt::format("Bad command: '{}': meta-command keywords must be lowercase", text)
-                            : fmt::format("Bad command: '{}': a line must start with G, M or T{}", text,
-                                          axis_words ? " (axis words alone repeat the last move only in CNC or "
-                                                       "laser mode, after M453 or M452)"
-                                                     : ""));
+        error(b, e,
+              kw_case ? fmt::format("Bad command: '{}': meta-command keywords must be lowercase", text)
+                      : fmt::format("Bad command: '{}': a line must start with G, M or T{}", text,
+                                    axis_words ? " (axis words alone repeat the last move only in CNC or "
+                                                 "laser mode, after M453 or M452)"
+                                               : ""));
         out_.errors.back().axis_repeat = axis_words;
         line.kind = LineKind::Bad;
       }
@@ -363,20 +364,20 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
 
 void LineParser::lex_params(Command& cmd, uint32_t& p, uint32_t e) {
   Param param;
-    uint64_t letters = 0;  // a bit per letter seen: 'A'..'Z', then 'a'..'z'
-    auto count = [&] {
-      ++cmd.param_count;
-      if (param.letter == 0) return;
-      const uint64_t bit = uint64_t{1} << (param.letter >= 'a' ? param.letter - 'a' + 26 : param.letter - 'A');
-      cmd.any_repeated_letter = cmd.any_repeated_letter || (letters & bit);
-      letters |= bit;
-    };
-    if (lex_.first_param(cmd, p, e, param)) count();
-    while (lex_.next_param(cmd, p, e, param)) {
-      count();
-      cmd.any_exponent = cmd.any_exponent || param.exponent_letter;
-      cmd.any_blank_before_colon = cmd.any_blank_before_colon || param.blank_before_colon;
-    }
+  uint64_t letters = 0;  // a bit per letter seen: 'A'..'Z', then 'a'..'z'
+  auto count = [&] {
+    ++cmd.param_count;
+    if (param.letter == 0) return;
+    const uint64_t bit = uint64_t{1} << (param.letter >= 'a' ? param.letter - 'a' + 26 : param.letter - 'A');
+    cmd.any_repeated_letter = cmd.any_repeated_letter || (letters & bit);
+    letters |= bit;
+  };
+  if (lex_.first_param(cmd, p, e, param)) count();
+  while (lex_.next_param(cmd, p, e, param)) {
+    count();
+    cmd.any_exponent = cmd.any_exponent || param.exponent_letter;
+    cmd.any_blank_before_colon = cmd.any_blank_before_colon || param.blank_before_colon;
+  }
 }
 
 void compute_blocks(ParsedFile& pf) {
@@ -419,7 +420,8 @@ void compute_blocks(ParsedFile& pf) {
     if (meta == MetaKind::Else || meta == MetaKind::Elif) {
       const MetaKind last = stack.back().last;
       if (last != MetaKind::If && last != MetaKind::Elif)
-        pf.errors.push_back({code, fmt::format("'{}' did not follow 'if' at the same indentation", meta_keyword(meta))});
+        pf.errors.push_back(
+            {code, fmt::format("'{}' did not follow 'if' at the same indentation", meta_keyword(meta))});
     }
     if ((meta == MetaKind::Break || meta == MetaKind::Continue) && !(line.flags & detail::kInLoop))
       pf.errors.push_back({code, fmt::format("'{}' was not inside a loop", meta_keyword(meta))});

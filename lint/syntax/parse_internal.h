@@ -27,9 +27,10 @@ struct MetaWord {
   MetaKind kind;
 };
 inline constexpr MetaWord kMetaWords[] = {
-    {"if", MetaKind::If},         {"elif", MetaKind::Elif},   {"else", MetaKind::Else},     {"while", MetaKind::While},
-    {"break", MetaKind::Break},   {"continue", MetaKind::Continue}, {"abort", MetaKind::Abort}, {"var", MetaKind::Var},
-    {"global", MetaKind::Global}, {"set", MetaKind::Set},     {"echo", MetaKind::Echo},     {"skip", MetaKind::Skip},
+    {"if", MetaKind::If},       {"elif", MetaKind::Elif},   {"else", MetaKind::Else},
+    {"while", MetaKind::While}, {"break", MetaKind::Break}, {"continue", MetaKind::Continue},
+    {"abort", MetaKind::Abort}, {"var", MetaKind::Var},     {"global", MetaKind::Global},
+    {"set", MetaKind::Set},     {"echo", MetaKind::Echo},   {"skip", MetaKind::Skip},
 };
 
 // A command whose one string argument needs no letter (M117 text); a fraction makes it another command.
@@ -192,7 +193,8 @@ class LineParser {
   /// The meta command's expressions as RRF's expression parser reads them (after check_expression passed).
   void check_meta_syntax(MetaKind kind, uint32_t b, uint32_t e);
   void add_line(const Line& line, bool cut_by_del) {
-    if (!line.code.empty() && any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end)) {
+    if (!line.code.empty() &&
+        any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end)) {
       rich_->insert(next_line_);
       if (line.kind == LineKind::Commands && span_has(lex_.t, line.code, '(')) parens_->insert(next_line_);
       if (span_has(lex_.t, line.code, '\'')) apostrophes_->insert(next_line_);
@@ -212,14 +214,14 @@ class LineParser {
 
   ParsedFile& out_;
   Lexer lex_;
-  LineSet* rich_ = &out_.prefilters.rich_lines;  // the file's set (a part of a file writes to the whole file's)
+  LineSet* rich_ = &out_.prefilters.rich_lines;     // the file's set (a part of a file writes to the whole file's)
   LineSet* parens_ = &out_.prefilters.paren_lines;  // likewise
   LineSet* apostrophes_ = &out_.prefilters.apostrophe_lines;
   LineSet* colon_comments_ = &out_.prefilters.colon_comment_lines;
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)
-  bool laser_ = false;      // laser mode (M452): a line of axis words repeats the last move, as in CNC mode
+  bool laser_ = false;     // laser mode (M452): a line of axis words repeats the last move, as in CNC mode
   bool next_laser_ = false;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
 };

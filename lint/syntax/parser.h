@@ -13,15 +13,15 @@
 #pragma once
 
 #include <compare>
-#include <cstring>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
-#include <utility>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "lint/base/source.h"
@@ -40,12 +40,12 @@ enum class ValueKind : uint8_t {
 };
 
 struct Param {
-  Span span;             // letter (with a leading ' for lowercase axes) to the end of the value, trimmed
-  Span value;            // the value text, trimmed; empty for ValueKind::None
-  char letter = 0;       // 'A'..'Z', or 'a'..'z' for an apostrophe-prefixed lowercase axis; 0 = unlettered text
+  Span span;        // letter (with a leading ' for lowercase axes) to the end of the value, trimmed
+  Span value;       // the value text, trimmed; empty for ValueKind::None
+  char letter = 0;  // 'A'..'Z', or 'a'..'z' for an apostrophe-prefixed lowercase axis; 0 = unlettered text
   ValueKind kind = ValueKind::None;
-  bool has_expr = false;         // the value contains a {…} expression
-  bool exponent_letter = false;  // the value swallowed an E/e after a digit (`X80E420`)
+  bool has_expr = false;            // the value contains a {…} expression
+  bool exponent_letter = false;     // the value swallowed an E/e after a digit (`X80E420`)
   bool blank_before_colon = false;  // a blank before ':' ends the list early (`E3 :4`)
 };
 
@@ -67,18 +67,18 @@ class ParamRef {
 };
 
 struct Command {
-  Span span;             // the whole command text, trimmed
-  Span word;             // "M563", "g59.3", "T{…}"
-  char letter = 0;       // 'G', 'M' or 'T' (upper-cased)
-  int32_t number = -1;   // code number; -1 for `T` with no number; for T{expr} also -1
-  int8_t fraction = -1;  // digit after '.', -1 if none
-  bool number_expr = false;  // T{expr}
-  bool has_number = false;   // digits follow the letter: tells `T-1` (deselect) from a bare `T` (report)
-  bool cnc = false;          // parsed in CNC mode: `( )` is a comment inside it
-  bool any_exponent = false;        // some parameter swallowed an E after a digit (Param::exponent_letter)
+  Span span;                            // the whole command text, trimmed
+  Span word;                            // "M563", "g59.3", "T{…}"
+  char letter = 0;                      // 'G', 'M' or 'T' (upper-cased)
+  int32_t number = -1;                  // code number; -1 for `T` with no number; for T{expr} also -1
+  int8_t fraction = -1;                 // digit after '.', -1 if none
+  bool number_expr = false;             // T{expr}
+  bool has_number = false;              // digits follow the letter: tells `T-1` (deselect) from a bare `T` (report)
+  bool cnc = false;                     // parsed in CNC mode: `( )` is a comment inside it
+  bool any_exponent = false;            // some parameter swallowed an E after a digit (Param::exponent_letter)
   bool any_blank_before_colon = false;  // some parameter has Param::blank_before_colon
   bool any_repeated_letter = false;     // two parameters have the same letter
-  uint32_t line = 0;         // index into ParsedFile::lines
+  uint32_t line = 0;                    // index into ParsedFile::lines
   uint32_t param_count = 0;
   bool is(char l, int32_t n, int8_t f = -1) const { return letter == l && number == n && fraction == f; }
 };
@@ -95,17 +95,17 @@ enum class MetaKind : uint8_t { None, If, Elif, Else, While, Break, Continue, Ab
 std::string_view meta_keyword(MetaKind k);
 
 struct Line {
-  Span span;        // the logical line, without its terminator
-  Span code;        // the text RRF executes: no indentation, line number, checksum or comment; trimmed
-  Span comment;     // the comment text including ';' (empty when none)
-  uint32_t indent = 0;      // RRF indent units: a blank counts 1, a tab advances to the next multiple of 4
+  Span span;                   // the logical line, without its terminator
+  Span code;                   // the text RRF executes: no indentation, line number, checksum or comment; trimmed
+  Span comment;                // the comment text including ';' (empty when none)
+  uint32_t indent = 0;         // RRF indent units: a blank counts 1, a tab advances to the next multiple of 4
   uint32_t stored_length = 0;  // characters RRF stores for the length limit
   uint32_t first_command = 0;
   uint32_t command_count = 0;
   LineKind kind = LineKind::Blank;
   MetaKind meta = MetaKind::None;
-  Span meta_arg;            // condition / expression / "name = expr" after the keyword
-  Span meta_name;           // variable name for var/global/set
+  Span meta_arg;   // condition / expression / "name = expr" after the keyword
+  Span meta_name;  // variable name for var/global/set
   bool indent_tabs = false;
   bool indent_spaces = false;
   bool line_number = false;  // starts with N…
@@ -124,16 +124,16 @@ struct ParseError {
 };
 
 struct ParseOptions {
-  bool cnc_mode = false;  // `( )` comments are recognised only in CNC mode (M453)
+  bool cnc_mode = false;    // `( )` comments are recognised only in CNC mode (M453)
   bool laser_mode = false;  // M452: like CNC mode, a line of axis words repeats the last move (no `( )` comments)
   /// A large file is cut at line starts into parts of at least `part_bytes`, parsed on up to `threads` threads
   /// and joined. The result is the same as a parse on one thread (a part that a mode switch before it changes is
   /// parsed again).
   unsigned threads = 1;
   size_t part_bytes = size_t{2} << 20;
-  /// Most lines (`G1 X10 Y20 ; note`: commands of letters, numbers and lists, indented by spaces if at all) take a short path
-  /// that classifies the line's bytes 16 at a time. Off: every line goes through the full lexer. The result is the
-  /// same either way; the tests compare the two.
+  /// Most lines (`G1 X10 Y20 ; note`: commands of letters, numbers and lists, indented by spaces if at all) take a
+  /// short path that classifies the line's bytes 16 at a time. Off: every line goes through the full lexer. The result
+  /// is the same either way; the tests compare the two.
   bool fast_lines = true;
   /// Tests only: every prefilter off (ParsedFile::Prefilters: each line set holds every line, each flag is true,
   /// commands_with lists every command). The fixture runner lints each case both ways and requires the same
@@ -156,7 +156,9 @@ class ParamRange {
     const Param& operator*() const { return p_; }
     const Param* operator->() const { return &p_; }
     iterator& operator++();
-    friend bool operator==(const iterator& a, const iterator& b) { return a.done_ == b.done_ && (a.done_ || a.pos_ == b.pos_); }
+    friend bool operator==(const iterator& a, const iterator& b) {
+      return a.done_ == b.done_ && (a.done_ || a.pos_ == b.pos_);
+    }
 
    private:
     std::string_view t_;
@@ -244,7 +246,7 @@ struct ParsedFile {
  private:
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
-  CodeCommands run(size_t j) const;     // the commands of code_keys_[j]
+  CodeCommands run(size_t j) const;  // the commands of code_keys_[j]
   CodeCommands of_key(uint16_t key) const;
   // Every command's index, sorted by code key (then file order). Keys: G0…G1023, M0…M1023, T, then the commands of
   // no key (unlisted_codes). code_keys_ are the keys the file uses, in order; the run of code_keys_[j] is

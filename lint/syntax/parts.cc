@@ -21,7 +21,8 @@ void LineParser::join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, ui
   pf.lines.big_counts_.merge(part.lines.big_counts_);  // keyed by line: already the file's indices
   pf.lines.long_lines_.merge(part.lines.long_lines_);
   pf.commands.append(std::move(part.commands));
-  pf.errors.insert(pf.errors.end(), std::make_move_iterator(part.errors.begin()), std::make_move_iterator(part.errors.end()));
+  pf.errors.insert(pf.errors.end(), std::make_move_iterator(part.errors.begin()),
+                   std::make_move_iterator(part.errors.end()));
   pf.semicolon_cuts.insert(pf.semicolon_cuts.end(), part.semicolon_cuts.begin(), part.semicolon_cuts.end());
 }
 
@@ -68,8 +69,8 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
       ps[j].cnc_in = ps[j - 1].cnc_out;
       ps[j].laser_in = ps[j - 1].laser_out;
       pf.prefilters.rich_lines.clear(first[j], first[j + 1]);
-      for (LineSet* set : {&pf.prefilters.paren_lines, &pf.prefilters.apostrophe_lines,
-                           &pf.prefilters.colon_comment_lines})
+      for (LineSet* set :
+           {&pf.prefilters.paren_lines, &pf.prefilters.apostrophe_lines, &pf.prefilters.colon_comment_lines})
         set->clear(first[j], first[j + 1]);
       run(j);
     }

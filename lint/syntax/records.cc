@@ -30,7 +30,8 @@ void CommandTable::add(const Command& c) {
   if (c.param_count >= 255) big_counts_[i] = c.param_count;
   r.bits = static_cast<uint8_t>(detail::letter_bits(c.letter) | (c.number_expr ? detail::kNumberExpr : 0) |
                                 (c.has_number ? detail::kHasNumber : 0) | (c.cnc ? detail::kCnc : 0) |
-                                (c.any_exponent ? detail::kAnyExponent : 0) | (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
+                                (c.any_exponent ? detail::kAnyExponent : 0) |
+                                (c.any_blank_before_colon ? detail::kAnyBlankColon : 0) |
                                 (c.any_repeated_letter ? detail::kAnyRepeat : 0));
   push_rec(r);
 }
@@ -97,10 +98,11 @@ void LineTable::put(detail::LineRec& r, uint32_t i, const Line& l) {
   if (l.command_count >= 65535) big_counts_[i] = l.command_count;
   r.kind_meta = static_cast<uint8_t>(static_cast<unsigned>(l.kind) | (static_cast<unsigned>(l.meta) << 3) |
                                      (l.comment.empty() ? 0 : 0x80));
-  r.flags = static_cast<uint8_t>((l.indent_tabs ? detail::kIndentTabs : 0) | (l.indent_spaces ? detail::kIndentSpaces : 0) |
-                                 (l.line_number ? detail::kLineNumber : 0) | (l.checksum ? detail::kChecksum : 0) |
-                                 (l.conditional ? detail::kConditional : 0) | (l.in_loop ? detail::kInLoop : 0) |
-                                 (l.after_nul ? detail::kAfterNul : 0));
+  r.flags =
+      static_cast<uint8_t>((l.indent_tabs ? detail::kIndentTabs : 0) | (l.indent_spaces ? detail::kIndentSpaces : 0) |
+                           (l.line_number ? detail::kLineNumber : 0) | (l.checksum ? detail::kChecksum : 0) |
+                           (l.conditional ? detail::kConditional : 0) | (l.in_loop ? detail::kInLoop : 0) |
+                           (l.after_nul ? detail::kAfterNul : 0));
 }
 
 uint32_t LineTable::big_count(size_t i) const { return big_counts_.at(static_cast<uint32_t>(i)); }

@@ -66,12 +66,12 @@ inline uint8_t letter_bits(char letter) { return letter == 'G' ? 0 : letter == '
 // table sized ahead of a parse in parts is not zeroed first (DefaultInit below).
 struct LineRec {
   uint32_t code_begin, code_end;
-  uint32_t first;            // Commands/Bad: first command; Meta: index into the meta table
-  uint16_t indent;           // saturated: the exact value is then in LineTable::long_lines_
-  uint16_t stored_length;    // saturated: likewise
-  uint16_t command_count;    // saturated: the exact count is then in LineTable::big_counts_
-  uint8_t kind_meta;         // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
-  uint8_t flags;             // LineFlag bits
+  uint32_t first;          // Commands/Bad: first command; Meta: index into the meta table
+  uint16_t indent;         // saturated: the exact value is then in LineTable::long_lines_
+  uint16_t stored_length;  // saturated: likewise
+  uint16_t command_count;  // saturated: the exact count is then in LineTable::big_counts_
+  uint8_t kind_meta;       // LineKind (3 bits) | MetaKind (4 bits) << 3 | 0x80 when the line has a comment
+  uint8_t flags;           // LineFlag bits
 };
 
 // The stored form of a command: 20 bytes.
@@ -79,7 +79,7 @@ struct CommandRec {
   uint32_t begin, end;  // the command's span
   uint32_t line;
   int32_t number;
-  uint8_t word_len;     // saturated: the exact word is then in CommandTable::long_words_
+  uint8_t word_len;  // saturated: the exact word is then in CommandTable::long_words_
   int8_t fraction;
   uint8_t bits;         // letter (2 bits) and CommandFlag bits
   uint8_t param_count;  // saturated: the exact count is then in CommandTable::big_counts_
@@ -119,10 +119,23 @@ class DecodingIterator {
   DecodingIterator(const Table* t, size_t i) : t_(t), i_(i) {}
   RRFLINT_ALWAYS_INLINE T operator*() const { return (*t_)[i_]; }
   T operator[](difference_type n) const { return (*t_)[i_ + n]; }
-  DecodingIterator& operator++() { ++i_; return *this; }
-  DecodingIterator operator++(int) { auto r = *this; ++i_; return r; }
-  DecodingIterator& operator--() { --i_; return *this; }
-  DecodingIterator& operator+=(difference_type n) { i_ += n; return *this; }
+  DecodingIterator& operator++() {
+    ++i_;
+    return *this;
+  }
+  DecodingIterator operator++(int) {
+    auto r = *this;
+    ++i_;
+    return r;
+  }
+  DecodingIterator& operator--() {
+    --i_;
+    return *this;
+  }
+  DecodingIterator& operator+=(difference_type n) {
+    i_ += n;
+    return *this;
+  }
   DecodingIterator operator+(difference_type n) const { return {t_, i_ + n}; }
   DecodingIterator operator-(difference_type n) const { return {t_, i_ - n}; }
   difference_type operator-(const DecodingIterator& o) const { return static_cast<difference_type>(i_ - o.i_); }
@@ -241,7 +254,7 @@ class LineTable {
   const SourceFile* source_ = nullptr;
   std::vector<detail::LineRec, detail::DefaultInit<detail::LineRec>> recs_;
   std::vector<MetaRec> metas_;
-  std::vector<Span> spans_;  // every logical line's span, kept only when the file has NUL bytes
+  std::vector<Span> spans_;                  // every logical line's span, kept only when the file has NUL bytes
   std::map<uint32_t, uint32_t> big_counts_;  // line -> command count, for 65535 or more
   std::map<uint32_t, std::pair<uint32_t, uint32_t>> long_lines_;  // line -> (indent, stored length), 65535 or more
 };

@@ -1,7 +1,7 @@
 #include "lint/syntax/values.h"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 
 namespace rrflint {
 namespace {
@@ -144,7 +144,9 @@ Val<std::vector<T>> get_list(const ParsedFile& pf, const Command& c, char letter
 
 }  // namespace
 
-std::string DriverId::str() const { return explicit_board ? fmt::format("{}.{}", board, driver) : fmt::format("{}", driver); }
+std::string DriverId::str() const {
+  return explicit_board ? fmt::format("{}.{}", board, driver) : fmt::format("{}", driver);
+}
 
 std::vector<Span> list_items(const ParsedFile& pf, const Param& p) {
   std::vector<Span> items;

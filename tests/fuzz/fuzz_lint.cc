@@ -15,8 +15,8 @@
 #include <string>
 
 #include "lint/engine/linter.h"
-#include "rules/registry.h"
 #include "lint/render/render.h"
+#include "rules/registry.h"
 #include "tests/param_check.h"
 
 using namespace rrflint;
@@ -24,7 +24,7 @@ using namespace rrflint;
 namespace {
 
 constexpr Version kVersions[] = {Version(2, 5, 1), Version(3, 0, 0), Version(3, 2, 2), Version(3, 3, 0),
-                                 Version(3, 4, 6), kRrf3_5_0_beta2, Version(3, 5, 4), kLatestVersion};
+                                 Version(3, 4, 6), kRrf3_5_0_beta2,  Version(3, 5, 4), kLatestVersion};
 constexpr Board kBoards[] = {Board::Unknown, Board::Duet2, Board::Duet3_6HC, Board::Duet3_Mini, Board::Maestro};
 
 }  // namespace
@@ -61,7 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // The ranges of commands inside blocks (the graph's runs) agree with every command's line.
     if (!test::block_commands_mismatch(pf).empty()) __builtin_trap();
     // The short path for simple lines records what the full lexer records.
-    if (test::parse_dump(pf) != test::parse_dump(parse(*pf.source, ParseOptions{.fast_lines = false}))) __builtin_trap();
+    if (test::parse_dump(pf) != test::parse_dump(parse(*pf.source, ParseOptions{.fast_lines = false})))
+      __builtin_trap();
   }
 
   std::ostringstream sink;
