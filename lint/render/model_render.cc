@@ -204,11 +204,63 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   render_workplaces(os, sm, r, s);
 }
 
+namespace {
+
+nlohmann::json at_json(const MachineResult& r, const SourceManager& sm, NodeId id) {
+  return id == kNoNode ? nlohmann::json(nullptr) : nlohmann::json(where(r, sm, id));
+}
+
+nlohmann::json fact_json(const Fact& f) { return f.known ? nlohmann::json(f.value) : nlohmann::json("unknown"); }
+
+nlohmann::json tools_json(const MachineResult& r, const SourceManager& sm) {
+  using nlohmann::json;
+  const MachineState& s = r.end_of_boot;
+  auto at = [&](NodeId id) { return at_json(r, sm, id); };
+  auto fj = fact_json;
+  json tools = json::array();
+  for (const auto& [n, t] : s.tools) {
+    json offs = json::object();
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
+      offs[axis_name(s.axes[static_cast<size_t>(i)])] = fj(t.offsets[static_cast<size_t>(i)]);
+    tools.push_back({{"tool", n},
+                     {"name", sanitize(t.name)},
+                     {"drives", t.drives},
+                     {"heaters", t.heaters},
+                     {"fans", t.fans},
+                     {"x_map", map_str(s, t.xmap)},
+                     {"y_map", map_str(s, t.ymap)},
+                     {"z_map", map_str(s, t.zmap)},
+                     {"offsets", offs},
+                     {"active", t.active},
+                     {"standby", t.standby},
+                     {"temperatures_known", t.temps_known},
+                     {"maybe", t.maybe},
+                     {"created_at", at(t.created)},
+                     {"last_configured_at", at(t.last_configured)}});
+  }
+  return tools;
+}
+
+nlohmann::json workplaces_json(const MachineState& s) {
+  using nlohmann::json;
+  auto fj = fact_json;
+  json wps = json::array();
+  for (int w = 1; w <= 9; ++w) {
+    json o = json::object();
+    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
+      o[axis_name(s.axes[static_cast<size_t>(i)])] =
+          fj(s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)]);
+    wps.push_back({{"slot", w}, {"origin", o}});
+  }
+  return wps;
+}
+
+}  // namespace
+
 void render_model_json(std::ostream& os, const SourceManager& sm, const MachineResult& r, const std::string& title) {
   using nlohmann::json;
   const MachineState& s = r.end_of_boot;
-  auto at = [&](NodeId id) -> json { return id == kNoNode ? json(nullptr) : json(where(r, sm, id)); };
-  auto fj = [](const Fact& f) -> json { return f.known ? json(f.value) : json("unknown"); };
+  auto at = [&](NodeId id) { return at_json(r, sm, id); };
   json j;
   j["version"] = 1;
   j["machine"] = sanitize(title);
@@ -259,38 +311,9 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
   json probes = json::array();
   for (const auto& [n, p] : s.probes) probes.push_back({{"probe", n}, {"type", p.type}, {"created_at", at(p.created)}});
   j["probes"] = probes;
-  json tools = json::array();
-  for (const auto& [n, t] : s.tools) {
-    json offs = json::object();
-    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
-      offs[axis_name(s.axes[static_cast<size_t>(i)])] = fj(t.offsets[static_cast<size_t>(i)]);
-    tools.push_back({{"tool", n},
-                     {"name", sanitize(t.name)},
-                     {"drives", t.drives},
-                     {"heaters", t.heaters},
-                     {"fans", t.fans},
-                     {"x_map", map_str(s, t.xmap)},
-                     {"y_map", map_str(s, t.ymap)},
-                     {"z_map", map_str(s, t.zmap)},
-                     {"offsets", offs},
-                     {"active", t.active},
-                     {"standby", t.standby},
-                     {"temperatures_known", t.temps_known},
-                     {"maybe", t.maybe},
-                     {"created_at", at(t.created)},
-                     {"last_configured_at", at(t.last_configured)}});
-  }
-  j["tools"] = tools;
+  j["tools"] = tools_json(r, sm);
   j["current_tool"] = s.current_tool_known ? json(s.current_tool) : json("unknown");
-  json wps = json::array();
-  for (int w = 1; w <= 9; ++w) {
-    json o = json::object();
-    for (int i = 0; i < s.visible_axes && i < kMaxAxisSlots; ++i)
-      o[axis_name(s.axes[static_cast<size_t>(i)])] =
-          fj(s.workplaces[static_cast<size_t>(w)].origin[static_cast<size_t>(i)]);
-    wps.push_back({{"slot", w}, {"origin", o}});
-  }
-  j["workplaces"] = wps;
+  j["workplaces"] = workplaces_json(s);
   j["m501_at"] = at(s.m501);
   os << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
 }
