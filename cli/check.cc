@@ -236,7 +236,7 @@ struct JobRun {
   void add_suppressions() {
     std::map<FileId, std::map<uint32_t, std::vector<std::string>>> by_file;
     for (const Diagnostic& d : r.diagnostics) {
-      if (d.loc.file == kNoFile || d.code == "RRF900" || d.code == "RRF901") continue;
+      if (d.loc.file == kNoFile || is_suppression_finding(d)) continue;
       const SourceFile& f = sm.get(d.loc.file);
       if (!reportable(f)) continue;
       auto& names = by_file[d.loc.file][f.line_of(d.loc.span.begin)];

@@ -142,6 +142,104 @@ bool Settings::excluded(const std::string& abs, std::string* why) {
   return false;
 }
 
+namespace {
+
+void row(std::ostream& os, std::string_view key, const std::string& value, const std::string& origin) {
+  os << fmt::format("{:<20} = {:<28} # {}\n", key, value, origin);
+}
+
+// Which file the settings come from, and what it extends.
+void print_config_files(std::ostream& os, const CliOptions& cli, const std::string& path_arg, const Config* cfg,
+                        const fs::path& dir) {
+  os << fmt::format("# settings for {}\n", path_arg.empty() ? "." : path_arg);
+  if (cli.isolated) os << "# config file: none (--isolated)\n";
+  else if (!cfg) os << "# config file: none found (searched from " << dir.generic_string() << " upward)\n";
+  else {
+    os << "# config file: " << Origin{Origin::Kind::File, cfg->files.back(), 0}.str() << "\n";
+    for (size_t i = cfg->files.size() - 1; i-- > 0;)
+      os << "#   extends: " << Origin{Origin::Kind::File, cfg->files[i], 0}.str() << "\n";
+  }
+}
+
+// Every setting with its value and where it came from.
+void print_settings(std::ostream& os, const CliOptions& cli, const Effective& eff, const Config* cfg) {
+  auto origin_of = [&](bool cli_given, auto& setting) {
+    if (cli_given) return std::string("command line");
+    if (cfg && setting.value) return setting.origin.str();
+    return std::string("default");
+  };
+  Setting<Version> no_v;
+  Setting<Board> no_b;
+  Setting<Severity> no_s;
+  Setting<bool> no_t;
+  row(os, "firmware", eff.lint.firmware ? fmt::format("\"{}\"", eff.lint.firmware->str()) : "(inferred from the files)",
+      origin_of(!cli.firmware.empty(), cfg ? cfg->firmware : no_v));
+  row(os, "board", eff.lint.board ? fmt::format("\"{}\"", board_name(*eff.lint.board)) : "(inferred from the files)",
+      origin_of(!cli.board.empty(), cfg ? cfg->board : no_b));
+  row(os, "fail-on", fmt::format("\"{}\"", severity_name(eff.fail_on)),
+      origin_of(!cli.fail_on.empty(), cfg ? cfg->fail_on : no_s));
+  row(os, "machine.tool-changer", eff.lint.tool_changer ? "true" : "false",
+      origin_of(cli.tool_changer, cfg ? cfg->tool_changer : no_t));
+  row(os, "inline suppressions", eff.lint.inline_suppressions ? "on" : "off",
+      cli.no_inline_suppressions ? "command line" : "default");
+  Setting<std::string> no_d;
+  row(os, "docs-url", fmt::format("\"{}\"", eff.docs_base), origin_of(false, cfg ? cfg->docs_url : no_d));
+  if (cfg) {
+    for (const SelectionLayer& l : cfg->selection) {
+      if (l.select.value) row(os, "select", quoted_list(*l.select.value), l.select.origin.str());
+      if (l.extend_select.value)
+        row(os, "extend-select", quoted_list(*l.extend_select.value), l.extend_select.origin.str());
+      if (l.ignore.value) row(os, "ignore", quoted_list(*l.ignore.value), l.ignore.origin.str());
+    }
+    for (const PathPattern& p : cfg->exclude) row(os, "exclude", fmt::format("\"{}\"", p.glob), p.origin.str());
+    for (const PathPattern& p : cfg->per_file_ignores)
+      row(os, fmt::format("per-file-ignores"), fmt::format("\"{}\" = {}", p.glob, quoted_list(p.codes)),
+          p.origin.str());
+    for (const auto& [code, s] : cfg->severity)
+      row(os, fmt::format("severity.{}", code), fmt::format("\"{}\"", severity_name(*s.value)), s.origin.str());
+  }
+  if (cli.select_given) row(os, "select", quoted_list(cli.select), "command line");
+  if (cli.extend_select_given) row(os, "extend-select", quoted_list(cli.extend_select), "command line");
+  if (cli.ignore_given) row(os, "ignore", quoted_list(cli.ignore), "command line");
+}
+
+// For a file: whether it is excluded, and the per-file ignores that apply to it.
+void print_file_notes(std::ostream& os, const fs::path& path, Settings& settings, const Config* cfg) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) {
+    std::string why;
+    if (settings.excluded(path, &why)) os << "# this file is excluded by " << why << "\n";
+    if (cfg)
+      for (const PathPattern& p : cfg->per_file_ignores) {
+        auto rel = relative_below(path, p.base);
+        if (rel && pattern_applies(p.glob, *rel))
+          os << fmt::format("# per-file-ignores \"{}\" ({}) applies to this file: {}\n", p.glob, p.origin.str(),
+                            quoted_list(p.codes));
+      }
+  }
+}
+
+// Every rule: on or off, its severity, and why.
+void print_rules(std::ostream& os, const CliOptions& cli, const Config* cfg) {
+  const auto decisions = decide_rules(cfg, cli);
+  size_t n_on = 0;
+  for (const RuleDecision& d : decisions) n_on += d.on;
+  os << fmt::format("\n# rules: {} of {} enabled\n", n_on, decisions.size());
+  for (const RuleDecision& d : decisions) {
+    std::string sev(severity_name(d.rule->meta.severity));
+    std::string sev_origin;
+    if (cfg)
+      if (auto it = cfg->severity.find(std::string(d.rule->meta.code)); it != cfg->severity.end()) {
+        sev = std::string(severity_name(*it->second.value));
+        sev_origin = fmt::format(", severity from {}", it->second.origin.str());
+      }
+    os << fmt::format("{:<7} {:<38} {:<4} {:<8} # {}{}{}\n", d.rule->meta.code, d.rule->meta.name, d.on ? "on" : "off",
+                      sev, d.why, d.origin.kind == Origin::Kind::Default ? "" : " at " + d.origin.str(), sev_origin);
+  }
+}
+
+}  // namespace
+
 int run_config(const CliOptions& cli, const std::string& path_arg) {
   std::error_code ec;
   const fs::path path = fs::absolute(path_arg.empty() ? "." : path_arg, ec).lexically_normal();
@@ -159,80 +257,10 @@ int run_config(const CliOptions& cli, const std::string& path_arg) {
   }
   const Config* cfg = eff.config.get();
   std::ostream& os = std::cout;
-  auto row = [&](std::string_view key, const std::string& value, const std::string& origin) {
-    os << fmt::format("{:<20} = {:<28} # {}\n", key, value, origin);
-  };
-  os << fmt::format("# settings for {}\n", path_arg.empty() ? "." : path_arg);
-  if (cli.isolated) os << "# config file: none (--isolated)\n";
-  else if (!cfg) os << "# config file: none found (searched from " << dir.generic_string() << " upward)\n";
-  else {
-    os << "# config file: " << Origin{Origin::Kind::File, cfg->files.back(), 0}.str() << "\n";
-    for (size_t i = cfg->files.size() - 1; i-- > 0;)
-      os << "#   extends: " << Origin{Origin::Kind::File, cfg->files[i], 0}.str() << "\n";
-  }
-  auto origin_of = [&](bool cli_given, auto& setting) {
-    if (cli_given) return std::string("command line");
-    if (cfg && setting.value) return setting.origin.str();
-    return std::string("default");
-  };
-  Setting<Version> no_v;
-  Setting<Board> no_b;
-  Setting<Severity> no_s;
-  Setting<bool> no_t;
-  row("firmware", eff.lint.firmware ? fmt::format("\"{}\"", eff.lint.firmware->str()) : "(inferred from the files)",
-      origin_of(!cli.firmware.empty(), cfg ? cfg->firmware : no_v));
-  row("board", eff.lint.board ? fmt::format("\"{}\"", board_name(*eff.lint.board)) : "(inferred from the files)",
-      origin_of(!cli.board.empty(), cfg ? cfg->board : no_b));
-  row("fail-on", fmt::format("\"{}\"", severity_name(eff.fail_on)),
-      origin_of(!cli.fail_on.empty(), cfg ? cfg->fail_on : no_s));
-  row("machine.tool-changer", eff.lint.tool_changer ? "true" : "false",
-      origin_of(cli.tool_changer, cfg ? cfg->tool_changer : no_t));
-  row("inline suppressions", eff.lint.inline_suppressions ? "on" : "off",
-      cli.no_inline_suppressions ? "command line" : "default");
-  Setting<std::string> no_d;
-  row("docs-url", fmt::format("\"{}\"", eff.docs_base), origin_of(false, cfg ? cfg->docs_url : no_d));
-  if (cfg) {
-    for (const SelectionLayer& l : cfg->selection) {
-      if (l.select.value) row("select", quoted_list(*l.select.value), l.select.origin.str());
-      if (l.extend_select.value)
-        row("extend-select", quoted_list(*l.extend_select.value), l.extend_select.origin.str());
-      if (l.ignore.value) row("ignore", quoted_list(*l.ignore.value), l.ignore.origin.str());
-    }
-    for (const PathPattern& p : cfg->exclude) row("exclude", fmt::format("\"{}\"", p.glob), p.origin.str());
-    for (const PathPattern& p : cfg->per_file_ignores)
-      row(fmt::format("per-file-ignores"), fmt::format("\"{}\" = {}", p.glob, quoted_list(p.codes)), p.origin.str());
-    for (const auto& [code, s] : cfg->severity)
-      row(fmt::format("severity.{}", code), fmt::format("\"{}\"", severity_name(*s.value)), s.origin.str());
-  }
-  if (cli.select_given) row("select", quoted_list(cli.select), "command line");
-  if (cli.extend_select_given) row("extend-select", quoted_list(cli.extend_select), "command line");
-  if (cli.ignore_given) row("ignore", quoted_list(cli.ignore), "command line");
-  if (!fs::is_directory(path, ec)) {
-    std::string why;
-    if (settings.excluded(path, &why)) os << "# this file is excluded by " << why << "\n";
-    if (cfg)
-      for (const PathPattern& p : cfg->per_file_ignores) {
-        auto rel = relative_below(path, p.base);
-        if (rel && pattern_applies(p.glob, *rel))
-          os << fmt::format("# per-file-ignores \"{}\" ({}) applies to this file: {}\n", p.glob, p.origin.str(),
-                            quoted_list(p.codes));
-      }
-  }
-  const auto decisions = decide_rules(cfg, cli);
-  size_t n_on = 0;
-  for (const RuleDecision& d : decisions) n_on += d.on;
-  os << fmt::format("\n# rules: {} of {} enabled\n", n_on, decisions.size());
-  for (const RuleDecision& d : decisions) {
-    std::string sev(severity_name(d.rule->meta.severity));
-    std::string sev_origin;
-    if (cfg)
-      if (auto it = cfg->severity.find(std::string(d.rule->meta.code)); it != cfg->severity.end()) {
-        sev = std::string(severity_name(*it->second.value));
-        sev_origin = fmt::format(", severity from {}", it->second.origin.str());
-      }
-    os << fmt::format("{:<7} {:<38} {:<4} {:<8} # {}{}{}\n", d.rule->meta.code, d.rule->meta.name, d.on ? "on" : "off",
-                      sev, d.why, d.origin.kind == Origin::Kind::Default ? "" : " at " + d.origin.str(), sev_origin);
-  }
+  print_config_files(os, cli, path_arg, cfg, dir);
+  print_settings(os, cli, eff, cfg);
+  print_file_notes(os, path, settings, cfg);
+  print_rules(os, cli, cfg);
   return kExitClean;
 }
 

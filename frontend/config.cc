@@ -61,9 +61,11 @@ struct Loader {
     return true;
   }
 
-  bool load(const fs::path& path, const toml::source_region* from, const fs::path& from_file) {
+  // Reads and parses one config file (and, first, the file it extends). `abs` is its canonical path.
+  bool open(const fs::path& path, const toml::source_region* from, const fs::path& from_file, toml::table& tbl,
+            fs::path& abs) {
     std::error_code ec;
-    fs::path abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
     if (!fs::is_regular_file(abs, ec)) {
       if (from) return fail(from_file, *from, fmt::format("'extend': {}: no such file", show_path(abs)));
       err.file = abs;
@@ -74,7 +76,6 @@ struct Loader {
       if (from) return fail(from_file, *from, fmt::format("'extend': {} extends itself (a cycle)", show_path(abs)));
       return false;
     }
-    toml::table tbl;
     try {
       tbl = toml::parse_file(abs.string());
     } catch (const toml::parse_error& e) {
@@ -87,6 +88,104 @@ struct Loader {
       fs::path next = fs::path(target).is_absolute() ? fs::path(target) : abs.parent_path() / target;
       if (!load(next, &ext->source(), abs)) return false;
     }
+    return true;
+  }
+
+  // firmware, board, fail-on, docs-url. False on a bad value; `known` false for another key.
+  bool scalar_key(const fs::path& abs, const std::string& key, const toml::source_region& at, const toml::node& v,
+                  bool& known) {
+    known = true;
+    if (key == "firmware") {
+      std::string s;
+      if (!v.is_string())
+        return fail(abs, v.source(),
+                    "'firmware' must be a string such as \"3.5\" (a TOML number loses digits: 3.10 is 3.1)");
+      string_value(abs, v, key, s);
+      std::string warn, why;
+      auto ver = parse_target_version(s, &warn, &why);
+      if (!ver) return fail(abs, v.source(), "'firmware': " + why);
+      if (!warn.empty()) cfg.warnings.push_back(fmt::format("{}: 'firmware': {}", abs.string(), warn));
+      cfg.firmware = {*ver, origin(abs, at)};
+    } else if (key == "board") {
+      std::string s;
+      if (!string_value(abs, v, key, s)) return false;
+      auto b = parse_board(s);
+      if (!b)
+        return fail(abs, v.source(),
+                    fmt::format("'board': unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", s));
+      cfg.board = {*b, origin(abs, at)};
+    } else if (key == "fail-on") {
+      std::string s;
+      if (!string_value(abs, v, key, s)) return false;
+      auto sev = parse_severity(s);
+      if (!sev) return fail(abs, v.source(), fmt::format("'fail-on': '{}' is not error, warning or info", s));
+      cfg.fail_on = {*sev, origin(abs, at)};
+    } else if (key == "docs-url") {
+      std::string s, why;
+      if (!string_value(abs, v, key, s)) return false;
+      auto url = parse_docs_url(s, &why);
+      if (!url) return fail(abs, v.source(), "'docs-url': " + why);
+      cfg.docs_url = {*url, origin(abs, at)};
+    } else {
+      known = false;
+    }
+    return true;
+  }
+
+  // exclude, [severity], [machine], [per-file-ignores]. False on a bad value; `known` false for another key.
+  bool table_key(const fs::path& abs, const fs::path& base, const std::string& key, const toml::node& v, bool& known) {
+    known = true;
+    if (key == "exclude") {
+      const toml::array* arr = v.as_array();
+      if (!arr) return fail(abs, v.source(), "'exclude' must be an array of path patterns");
+      for (const toml::node& item : *arr) {
+        const auto* s = item.as_string();
+        if (!s || s->get().empty()) return fail(abs, item.source(), "'exclude' must be an array of path patterns");
+        cfg.exclude.push_back(PathPattern{s->get(), base, {}, origin(abs, item.source())});
+      }
+    } else if (key == "severity") {
+      const toml::table* t = v.as_table();
+      if (!t) return fail(abs, v.source(), "'severity' must be a table: [severity] then RRF306 = \"error\"");
+      for (auto&& [rk, rv] : *t) {
+        const Rule* r = builtin_rules().find(rk.str());
+        if (!r) return fail(abs, rk.source(), fmt::format("[severity]: unknown rule '{}'", rk.str()));
+        std::string s;
+        if (!string_value(abs, rv, fmt::format("severity.{}", rk.str()), s)) return false;
+        auto sev = parse_severity(s);
+        if (!sev) return fail(abs, rv.source(), fmt::format("[severity]: '{}' is not error, warning or info", s));
+        cfg.severity[std::string(r->meta.code)] = {*sev, origin(abs, rk.source())};
+      }
+    } else if (key == "machine") {
+      const toml::table* t = v.as_table();
+      if (!t) return fail(abs, v.source(), "'machine' must be a table: [machine] then tool-changer = true");
+      for (auto&& [mk, mv] : *t) {
+        if (mk.str() != "tool-changer")
+          return fail(abs, mk.source(), fmt::format("[machine]: unknown key '{}' (known: tool-changer)", mk.str()));
+        const auto* b = mv.as_boolean();
+        if (!b) return fail(abs, mv.source(), "[machine] tool-changer must be true or false");
+        cfg.tool_changer = {b->get(), origin(abs, mk.source())};
+      }
+    } else if (key == "per-file-ignores") {
+      const toml::table* t = v.as_table();
+      if (!t)
+        return fail(abs, v.source(),
+                    "'per-file-ignores' must be a table: [per-file-ignores] then \"macros/**\" = [\"RRF101\"]");
+      for (auto&& [gk, gv] : *t) {
+        std::vector<std::string> rules;
+        if (!rule_list(abs, gv, fmt::format("per-file-ignores.\"{}\"", gk.str()), rules)) return false;
+        cfg.per_file_ignores.push_back(
+            PathPattern{std::string(gk.str()), base, selector_codes(rules), origin(abs, gk.source())});
+      }
+    } else {
+      known = false;
+    }
+    return true;
+  }
+
+  bool load(const fs::path& path, const toml::source_region* from, const fs::path& from_file) {
+    toml::table tbl;
+    fs::path abs;
+    if (!open(path, from, from_file, tbl, abs)) return false;
     cfg.files.push_back(abs);
     const fs::path base = abs.parent_path();
     SelectionLayer layer;
@@ -103,84 +202,16 @@ struct Loader {
         if (!rule_list(abs, v, key, *s.value)) return false;
         s.origin = origin(abs, at);
         has_layer = true;
-      } else if (key == "firmware") {
-        std::string s;
-        if (!v.is_string())
-          return fail(abs, v.source(),
-                      "'firmware' must be a string such as \"3.5\" (a TOML number loses digits: 3.10 is 3.1)");
-        string_value(abs, v, key, s);
-        std::string warn, why;
-        auto ver = parse_target_version(s, &warn, &why);
-        if (!ver) return fail(abs, v.source(), "'firmware': " + why);
-        if (!warn.empty()) cfg.warnings.push_back(fmt::format("{}: 'firmware': {}", abs.string(), warn));
-        cfg.firmware = {*ver, origin(abs, at)};
-      } else if (key == "board") {
-        std::string s;
-        if (!string_value(abs, v, key, s)) return false;
-        auto b = parse_board(s);
-        if (!b)
-          return fail(abs, v.source(),
-                      fmt::format("'board': unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", s));
-        cfg.board = {*b, origin(abs, at)};
-      } else if (key == "fail-on") {
-        std::string s;
-        if (!string_value(abs, v, key, s)) return false;
-        auto sev = parse_severity(s);
-        if (!sev) return fail(abs, v.source(), fmt::format("'fail-on': '{}' is not error, warning or info", s));
-        cfg.fail_on = {*sev, origin(abs, at)};
-      } else if (key == "docs-url") {
-        std::string s, why;
-        if (!string_value(abs, v, key, s)) return false;
-        auto url = parse_docs_url(s, &why);
-        if (!url) return fail(abs, v.source(), "'docs-url': " + why);
-        cfg.docs_url = {*url, origin(abs, at)};
-      } else if (key == "exclude") {
-        const toml::array* arr = v.as_array();
-        if (!arr) return fail(abs, v.source(), "'exclude' must be an array of path patterns");
-        for (const toml::node& item : *arr) {
-          const auto* s = item.as_string();
-          if (!s || s->get().empty()) return fail(abs, item.source(), "'exclude' must be an array of path patterns");
-          cfg.exclude.push_back(PathPattern{s->get(), base, {}, origin(abs, item.source())});
-        }
-      } else if (key == "severity") {
-        const toml::table* t = v.as_table();
-        if (!t) return fail(abs, v.source(), "'severity' must be a table: [severity] then RRF306 = \"error\"");
-        for (auto&& [rk, rv] : *t) {
-          const Rule* r = builtin_rules().find(rk.str());
-          if (!r) return fail(abs, rk.source(), fmt::format("[severity]: unknown rule '{}'", rk.str()));
-          std::string s;
-          if (!string_value(abs, rv, fmt::format("severity.{}", rk.str()), s)) return false;
-          auto sev = parse_severity(s);
-          if (!sev) return fail(abs, rv.source(), fmt::format("[severity]: '{}' is not error, warning or info", s));
-          cfg.severity[std::string(r->meta.code)] = {*sev, origin(abs, rk.source())};
-        }
-      } else if (key == "machine") {
-        const toml::table* t = v.as_table();
-        if (!t) return fail(abs, v.source(), "'machine' must be a table: [machine] then tool-changer = true");
-        for (auto&& [mk, mv] : *t) {
-          if (mk.str() != "tool-changer")
-            return fail(abs, mk.source(), fmt::format("[machine]: unknown key '{}' (known: tool-changer)", mk.str()));
-          const auto* b = mv.as_boolean();
-          if (!b) return fail(abs, mv.source(), "[machine] tool-changer must be true or false");
-          cfg.tool_changer = {b->get(), origin(abs, mk.source())};
-        }
-      } else if (key == "per-file-ignores") {
-        const toml::table* t = v.as_table();
-        if (!t)
-          return fail(abs, v.source(),
-                      "'per-file-ignores' must be a table: [per-file-ignores] then \"macros/**\" = [\"RRF101\"]");
-        for (auto&& [gk, gv] : *t) {
-          std::vector<std::string> rules;
-          if (!rule_list(abs, gv, fmt::format("per-file-ignores.\"{}\"", gk.str()), rules)) return false;
-          cfg.per_file_ignores.push_back(
-              PathPattern{std::string(gk.str()), base, selector_codes(rules), origin(abs, gk.source())});
-        }
-      } else {
+        continue;
+      }
+      bool known = false;
+      if (!scalar_key(abs, key, at, v, known)) return false;
+      if (!known && !table_key(abs, base, key, v, known)) return false;
+      if (!known)
         return fail(abs, at,
                     fmt::format("unknown key '{}' (known: extend, select, extend-select, ignore, firmware, board, "
                                 "fail-on, exclude, docs-url, [severity], [machine], [per-file-ignores])",
                                 key));
-      }
     }
     if (has_layer) cfg.selection.push_back(std::move(layer));
     return true;

@@ -61,6 +61,6 @@ void check(const FileContext& cx, Sink& out) {
 
 }  // namespace
 
-extern const Rule cr_line_endings{.meta = kMeta, .check_file = check};
+extern const Rule cr_line_endings{.meta = kMeta, .check_file = check, .raw_bytes = true};
 
 }  // namespace rrflint

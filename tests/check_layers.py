@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The layering check: no #include points up a layer, and every project include is spelt from the repository root.
+"""The layering check: no #include points up a layer, every project include is spelt from the repository root, and
+no code outside the tests names a rule by its code string ("RRF107").
 
 Layers, lowest first (a file may include its own layer and those below it):
   lint/base  lint/syntax  lint/card  lint/boot  lint/engine  lint/render  rules  frontend  cli  bench/tests
@@ -14,6 +15,13 @@ LAYERS = ["lint/base", "lint/syntax", "lint/card", "lint/boot", "lint/engine", "
           "frontend", "cli", "bench", "tests"]
 TOP = {"bench": len(LAYERS), "tests": len(LAYERS)}  # test code may include anything
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+# A rule compared with, or looked up by, its code as a string literal: the engine and the front ends name rules by
+# their Rule objects (rules/registry.h, lint/engine/suppress.h), never by "RRFnnn".
+CODE_LOOKUP = re.compile(r'[!=]=\s*"RRF\d|"RRF\d+"\s*[!=]=|find(_rule)?\("RRF\d')
+
+
+# Folders of generated files below the checked ones (bench/out: benchmark inputs and old trees).
+IGNORED_DIRS = {"out", "node_modules", "corpus"}
 
 
 def layer_of(path):
@@ -28,7 +36,8 @@ def main():
     problems = []
     checked = 0
     for top in ["lint", "rules", "frontend", "cli", "bench", "tests"]:
-        for dirpath, _, names in os.walk(os.path.join(root, top)):
+        for dirpath, dirs, names in os.walk(os.path.join(root, top)):
+            dirs[:] = [d for d in dirs if d not in IGNORED_DIRS]  # generated, not sources
             for name in names:
                 if not name.endswith((".h", ".cc", ".inc", ".def")):
                     continue
@@ -40,6 +49,8 @@ def main():
                 checked += 1
                 with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
                     for n, line in enumerate(f, 1):
+                        if not path.startswith(("tests/", "bench/")) and CODE_LOOKUP.search(line):
+                            problems.append(f"{path}:{n}: a rule named by its code string (use the Rule object)")
                         m = INCLUDE.match(line)
                         if not m:
                             continue

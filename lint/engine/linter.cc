@@ -125,8 +125,10 @@ void shift_file_ids(MachineResult& r, FileId base) {
 namespace {
 
 // 8. A file with CR-only line endings is one line to targets that do not end a line at CR (RRF107): the firmware
-// never sees its lines 2…n as lines, so nothing but RRF107 is reported on them. Earlier targets keep everything.
-void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& sources) {
+// never sees its lines 2…n as lines, so only the rules that read raw bytes (Rule::raw_bytes) report on them.
+// Earlier targets keep everything.
+void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& sources,
+                                       const std::vector<const Rule*>& rules) {
   if (!cr_is_not_a_line_end(res.target.version)) return;
   std::vector<uint32_t> first_line_end(sources.size(), UINT32_MAX);  // by file: UINT32_MAX = not such a file
   bool any = false;
@@ -137,8 +139,11 @@ void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& 
     any = true;
   }
   if (!any) return;
+  std::set<std::string_view> raw;
+  for (const Rule* r : rules)
+    if (r->raw_bytes) raw.insert(r->meta.code);
   std::erase_if(res.diagnostics, [&](const Diagnostic& d) {
-    return d.code != "RRF107" && d.loc.file < first_line_end.size() && d.loc.span.begin >= first_line_end[d.loc.file];
+    return !raw.count(d.code) && d.loc.file < first_line_end.size() && d.loc.span.begin >= first_line_end[d.loc.file];
   });
 }
 
@@ -309,7 +314,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   trace::mark("end rules, sort");
   apply_suppressions(res, rule_set, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
   trace::mark("suppressions");
-  drop_after_first_line_of_cr_files(res, sources);
+  drop_after_first_line_of_cr_files(res, sources, rules);
   return res;
 }
 

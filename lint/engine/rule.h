@@ -124,6 +124,9 @@ struct Rule {
   /// list must name every command the check can report on (the fixture runner checks it against a run that
   /// calls every rule on every node).
   std::string_view on;
+  /// The rule reads the file's bytes, not the lines the firmware makes of them: its findings stand where the
+  /// firmware reads a file as one line (a CR-only file, RRF107), which drops every other finding past line 1.
+  bool raw_bytes = false;
 };
 
 /// A rule's `on` list, parsed. False (with the bad token in `bad`) on a malformed list.

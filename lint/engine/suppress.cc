@@ -271,6 +271,10 @@ class SuppressionPass {
 
 std::vector<const Rule*> engine_rules() { return {&unused_suppression, &unknown_rule_in_suppression}; }
 
+bool is_suppression_finding(const Diagnostic& d) {
+  return d.code == unused_suppression.meta.code || d.code == unknown_rule_in_suppression.meta.code;
+}
+
 void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vector<const Rule*>& enabled,
                         const LintOptions& options, std::vector<std::vector<Directive>>* directives) {
   Machine& m = *res.machine;

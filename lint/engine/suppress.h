@@ -82,5 +82,7 @@ extern const Rule unused_suppression;           // RRF900
 extern const Rule unknown_rule_in_suppression;  // RRF901
 /// Both, for a registry to add to its rule set.
 std::vector<const Rule*> engine_rules();
+/// Is `d` a finding of the suppression pass (RRF900/RRF901)? Those are never suppressed by --add-suppressions.
+bool is_suppression_finding(const Diagnostic& d);
 
 }  // namespace rrflint
