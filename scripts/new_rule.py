@@ -106,7 +106,7 @@ TODO: what RRF does with such a line, in RRF's own words where it answers.
 TODO: there is no fix (or: why applying it is safe, or when it is not).
 
 ## References
-- TODO: rrf-semantics §…, the RRF source (file and function)
+- TODO: [our explanation](../firmware-behaviour.md#…), the Duet3D G-code page, the RRF source (file and function)
 )md",
 }};
 

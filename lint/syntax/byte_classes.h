@@ -18,21 +18,11 @@ struct ByteClasses {
   bool value_stop[256] = {};  // '"', '{', '(', letters, '\'', ':'
   bool code_stop[256] = {};   // '"', '{', '}', ';', '*', '('
   bool number[256] = {};      // digits, '.', '-', '+'
-  // For the parse-time parameter scan (LineParser::count_params): what a byte can do to a parameter list.
-  enum : uint8_t { kPlain, kBlank, kLetter, kQuote, kBrace, kColon, kParen, kApostrophe };
-  uint8_t param[256] = {};
-  bool rich[256] = {};  // not a letter, digit, blank, '.', '-', '+' or ':' (ParsedFile::rich_lines)
+  bool rich[256] = {};        // not a letter, digit, blank, '.', '-', '+' or ':' (ParsedFile::rich_lines)
   constexpr ByteClasses() {
     for (int c = 0; c < 256; ++c)
       rich[c] = !((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == ' ' || c == '\t' ||
                   c == '.' || c == '-' || c == '+' || c == ':');
-    param[static_cast<unsigned char>(' ')] = param[static_cast<unsigned char>('\t')] = kBlank;
-    for (int c = 'A'; c <= 'Z'; ++c) param[c] = param[c + 32] = kLetter;
-    param[static_cast<unsigned char>('"')] = kQuote;
-    param[static_cast<unsigned char>('{')] = kBrace;
-    param[static_cast<unsigned char>(':')] = kColon;
-    param[static_cast<unsigned char>('(')] = kParen;
-    param[static_cast<unsigned char>('\'')] = kApostrophe;
     for (int c = '0'; c <= '9'; ++c) number[c] = true;
     for (unsigned char c : {'.', '-', '+'}) number[c] = true;
     for (int c = 'A'; c <= 'Z'; ++c) value_stop[c] = value_stop[c + 32] = true;

@@ -1,4 +1,4 @@
-// The fast paths: most lines in 16-byte steps (simple_line) and parameters counted without a Param (count_params).
+// The fast path: most lines in 16-byte steps (simple_line).
 
 #include "lint/syntax/parse_internal.h"
 
@@ -140,92 +140,6 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   (void)b, (void)e;
   return false;
 #endif
-}
-
-// The parameters of `cmd` from `p` (after its word) to the end of the command, counted with their flags, without
-// making a Param: a value runs to the next letter outside quotes and braces, and an E or e after a digit is an
-// exponent (docs/firmware-behaviour.md#parameters). At anything that the lexer reports or decides in a way this scan
-// does not (an unclosed string or expression, a control character in a string, a blank before ':', a `'x` axis, a CNC
-// comment, text before the first letter, a command that takes the rest of the line) it returns false and leaves `cmd`
-// and `p` alone, and lex_params does the work. The tests hold both to the same counts and flags (tests/param_check.h,
-// on every fixture, the corpus and the fuzz inputs).
-bool LineParser::count_params(Command& cmd, uint32_t& pp, uint32_t e) const {
-  if (cmd.number_expr || (cmd.fraction < 0 && takes_rest_of_line(cmd.letter, cmd.number))) return false;
-  const auto* s = reinterpret_cast<const unsigned char*>(lex_.t.data());
-  const uint8_t* const cls = kBytes.param;
-  const char* const t = lex_.t.data();
-  const auto n = static_cast<uint32_t>(lex_.t.size());
-  // On the opening quote: the position after the closing one, or 0 when the lexer must see the string.
-  auto skip_string = [&](uint32_t p) -> uint32_t {
-    for (++p; p < e && s[p] != '"'; ++p)
-      if (s[p] < 0x20) return 0;
-    return p < e ? p + 1 : 0;
-  };
-  uint32_t p = pp, count = 0;
-  uint32_t letters = 0;  // a bit per letter seen, 'A'..'Z'
-  bool repeated = false, exponent = false;
-  for (;;) {
-    while (p < e && cls[s[p]] == ByteClasses::kBlank) ++p;
-    if (p >= e) break;
-    if (cls[s[p]] != ByteClasses::kLetter) return false;
-    const unsigned u = s[p] & 0xDFu;  // upper case
-    if (u == 'G' || u == 'M') break;  // the next command of the line
-    const uint32_t bit = uint32_t{1} << (u - 'A');
-    repeated = repeated || (letters & bit);
-    letters |= bit;
-    ++count;
-    // The value.
-    for (++p; (p = next_value_stop(t, n, p, e)) < e;) {
-      switch (cls[s[p]]) {
-        case ByteClasses::kPlain:
-        case ByteClasses::kBlank: ++p; continue;
-        case ByteClasses::kLetter:
-          if ((s[p] | 0x20u) != 'e' || !is_digit(static_cast<char>(s[p - 1]))) break;
-          exponent = true;
-          ++p;
-          continue;
-        case ByteClasses::kQuote:
-          if (!(p = skip_string(p))) return false;
-          continue;
-        case ByteClasses::kBrace: {
-          const uint32_t open = p;
-          int depth = 0;
-          while (p < e && !(s[p] == '}' && --depth == 0)) {
-            if (s[p] == '"') {
-              if (!(p = skip_string(p))) return false;
-              continue;
-            }
-            depth += s[p] == '{';
-            ++p;
-          }
-          if (p >= e) return false;
-          ++p;
-          const char* msg = nullptr;
-          uint32_t at = 0;
-          if (!brace_expression_ok(lex_.t, open, p, &msg, &at)) return false;  // the lexer reports it
-          continue;
-        }
-        case ByteClasses::kColon:
-          if (is_blank(static_cast<char>(s[p - 1]))) return false;
-          ++p;
-          continue;
-        case ByteClasses::kParen:
-          if (lex_.cnc) return false;
-          ++p;
-          continue;
-        default:  // kApostrophe
-          if (p + 1 < e && is_alpha(static_cast<char>(s[p + 1]))) return false;
-          ++p;
-          continue;
-      }
-      break;  // a letter: the next parameter
-    }
-  }
-  cmd.param_count = count;
-  cmd.any_repeated_letter = repeated;
-  cmd.any_exponent = exponent;
-  pp = p;
-  return true;
 }
 
 }  // namespace rrflint

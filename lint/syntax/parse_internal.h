@@ -1,6 +1,6 @@
 // Private to the parser's .cc files (lint/syntax/*.cc): the lexer, the line parser and what they share. The
 // parser is split by stage: lexer.cc (Lexer, ParamRange), line_parser.cc (logical lines, meta commands, blocks),
-// expr_syntax.cc (RRF's expression grammar), fast_lines.cc (simple_line, count_params), records.cc (the tables),
+// expr_syntax.cc (RRF's expression grammar), fast_lines.cc (simple_line), records.cc (the tables),
 // code_index.cc (with_code), parts.cc (a file parsed in parts), parser.cc (parse(), the prefilters).
 #pragma once
 
@@ -184,7 +184,6 @@ class LineParser {
   static void join_part(ParsedFile& pf, ParsedFile&& part, uint32_t first, uint32_t end);
   void parse_meta(Line& line, MetaKind kind, uint32_t after_kw, uint32_t e);
   void parse_commands(Line& line, uint32_t b, uint32_t e);
-  bool count_params(Command& cmd, uint32_t& p, uint32_t e) const;
   void lex_params(Command& cmd, uint32_t& p, uint32_t e);
   // `what` names the expression in a message: "the '<kw>' <role>", or "the <role>" without a keyword (built only
   // for an error: most expressions are fine).
