@@ -11,6 +11,8 @@ import os
 import re
 import sys
 
+from source_tree import finish, repo_root, source_files
+
 LAYERS = ["lint/base", "lint/syntax", "lint/card", "lint/boot", "lint/engine", "lint/render", "rules",
           "frontend", "cli", "bench", "tests"]
 TOP = {"bench": len(LAYERS), "tests": len(LAYERS)}  # test code may include anything
@@ -18,10 +20,6 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 # A rule compared with, or looked up by, its code as a string literal: the engine and the front ends name rules by
 # their Rule objects (rules/registry.h, lint/engine/suppress.h), never by "RRFnnn".
 CODE_LOOKUP = re.compile(r'[!=]=\s*"RRF\d|"RRF\d+"\s*[!=]=|find(_rule)?\("RRF\d')
-
-
-# Folders of generated files below the checked ones (bench/out: benchmark inputs and old trees).
-IGNORED_DIRS = {"out", "node_modules", "corpus"}
 
 
 def layer_of(path):
@@ -32,46 +30,34 @@ def layer_of(path):
 
 
 def main():
-    root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), ".."))
+    root = repo_root(sys.argv[1:])
     problems = []
     checked = 0
-    for top in ["lint", "rules", "frontend", "cli", "bench", "tests"]:
-        for dirpath, dirs, names in os.walk(os.path.join(root, top)):
-            dirs[:] = [d for d in dirs if d not in IGNORED_DIRS]  # generated, not sources
-            for name in names:
-                if not name.endswith((".h", ".cc", ".inc", ".def")):
+    tops = ["lint", "rules", "frontend", "cli", "bench", "tests"]
+    for path in source_files(root, tops, (".h", ".cc", ".inc", ".def")):
+        own = layer_of(path)
+        if own is None:
+            problems.append(f"{path}: not in any layer (add its folder to tests/check_layers.py)")
+            continue
+        checked += 1
+        with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+            for n, line in enumerate(f, 1):
+                if not path.startswith(("tests/", "bench/")) and CODE_LOOKUP.search(line):
+                    problems.append(f"{path}:{n}: a rule named by its code string (use the Rule object)")
+                m = INCLUDE.match(line)
+                if not m:
                     continue
-                path = os.path.relpath(os.path.join(dirpath, name), root)
-                own = layer_of(path)
-                if own is None:
-                    problems.append(f"{path}: not in any layer (add its folder to tests/check_layers.py)")
+                inc = m.group(1)
+                if not os.path.isfile(os.path.join(root, inc)):
+                    problems.append(f"{path}:{n}: include \"{inc}\" is not spelt from the repository root")
                     continue
-                checked += 1
-                with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
-                    for n, line in enumerate(f, 1):
-                        if not path.startswith(("tests/", "bench/")) and CODE_LOOKUP.search(line):
-                            problems.append(f"{path}:{n}: a rule named by its code string (use the Rule object)")
-                        m = INCLUDE.match(line)
-                        if not m:
-                            continue
-                        inc = m.group(1)
-                        if not os.path.isfile(os.path.join(root, inc)):
-                            problems.append(f"{path}:{n}: include \"{inc}\" is not spelt from the repository root")
-                            continue
-                        theirs = layer_of(inc)
-                        if theirs is None:
-                            problems.append(f"{path}:{n}: include \"{inc}\" is in no layer")
-                        elif theirs > own:
-                            problems.append(f"{path}:{n}: include \"{inc}\" points up a layer "
-                                            f"({LAYERS[min(own, len(LAYERS) - 1)]} -> {LAYERS[min(theirs, len(LAYERS) - 1)]})")
-    for p in problems:
-        print(p)
-    if checked == 0:
-        print("check_layers: no source file found under", root)
-        return 1
-    print(f"check_layers: {checked} files, {len(problems)} problems")
-    return 1 if problems else 0
-
+                theirs = layer_of(inc)
+                if theirs is None:
+                    problems.append(f"{path}:{n}: include \"{inc}\" is in no layer")
+                elif theirs > own:
+                    problems.append(f"{path}:{n}: include \"{inc}\" points up a layer "
+                                    f"({LAYERS[min(own, len(LAYERS) - 1)]} -> {LAYERS[min(theirs, len(LAYERS) - 1)]})")
+    return finish("check_layers", root, checked, problems)
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -13,6 +13,8 @@ import os
 import re
 import sys
 
+from source_tree import finish, repo_root, source_files
+
 MAX_FILE_LINES = 500
 MAX_FUNCTION_LINES = 80
 CHECKED = ["lint", "rules", "frontend", "cli", "bench"]
@@ -27,12 +29,6 @@ ALLOWED_FUNCTIONS = {
 }
 ALLOWED_FILES = {
 }
-
-NAME = re.compile(r"([A-Za-z_~][A-Za-z0-9_:<>~]*(?:operator\s*\S+)?)\s*\($")
-
-
-# Folders of generated files below the checked ones (bench/out: benchmark inputs and old trees).
-IGNORED_DIRS = {"out", "node_modules", "corpus"}
 
 
 def strip(text):
@@ -78,7 +74,6 @@ def functions(text):
     """(name, first line, last line) of every function body outside another function."""
     s = strip(text)
     s = re.sub(r"^[ \t]*#.*$", lambda m: " " * len(m.group(0)), s, flags=re.M)  # preprocessor lines
-    stack = []  # kinds of the open braces
     start = 0  # index where the current statement began
     found = []
     line = 1
@@ -88,12 +83,12 @@ def functions(text):
         if c == "\n":
             line += 1
     line_at[len(s)] = line
-    opened = []
+    opened = []  # (kind, function name, first line) of each open brace
     for i, c in enumerate(s):
         if c == "{":
             head = s[start:i]
             stripped = head.strip()
-            if "func" in stack:
+            if any(k == "func" for k, _, _ in opened):
                 kind = "other"
             elif re.search(r"\bnamespace\b|\bextern\s*$", stripped) or stripped.startswith("extern"):
                 kind = "ns"
@@ -104,7 +99,6 @@ def functions(text):
                 kind = "func"
             else:
                 kind = "other"
-            stack.append(kind)
             first = start + (len(head) - len(head.lstrip()))
             name = ""
             if kind == "func":
@@ -113,9 +107,8 @@ def functions(text):
             opened.append((kind, name, line_at[first]))
             start = i + 1
         elif c == "}":
-            if stack:
-                kind = stack.pop()
-                k, name, first = opened.pop()
+            if opened:
+                kind, name, first = opened.pop()
                 if kind == "func":
                     found.append((name, first, line_at[i]))
             start = i + 1
@@ -125,37 +118,30 @@ def functions(text):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
     report = "--report" in sys.argv
-    root = os.path.abspath(args[0] if args else os.path.join(os.path.dirname(__file__), ".."))
+    root = repo_root(sys.argv[1:])
     problems, longest, seen_allowed = [], [], set()
     count = 0
-    for top in CHECKED:
-        for dirpath, dirs, names in os.walk(os.path.join(root, top)):
-            dirs[:] = [d for d in dirs if d not in IGNORED_DIRS]  # generated, not sources
-            for name in sorted(names):
-                if not name.endswith((".h", ".cc")):
-                    continue
-                path = os.path.relpath(os.path.join(dirpath, name), root)
-                with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
-                    text = f.read()
-                count += 1
-                n = text.count("\n")
-                longest.append((n, path))
-                if n > MAX_FILE_LINES:
-                    if path in ALLOWED_FILES:
-                        seen_allowed.add(path)
-                    else:
-                        problems.append(f"{path}: {n} lines (limit {MAX_FILE_LINES})")
-                for fname, a, b in functions(text):
-                    length = b - a + 1
-                    longest.append((length, f"{path}:{a} {fname}()"))
-                    key = f"{path}:{fname}"
-                    if length > MAX_FUNCTION_LINES:
-                        if key in ALLOWED_FUNCTIONS:
-                            seen_allowed.add(key)
-                        else:
-                            problems.append(f"{path}:{a}: {fname}() is {length} lines (limit {MAX_FUNCTION_LINES})")
+    for path in source_files(root, CHECKED, (".h", ".cc")):
+        with open(os.path.join(root, path), encoding="utf-8", errors="replace") as f:
+            text = f.read()
+        count += 1
+        n = text.count("\n")
+        longest.append((n, path))
+        if n > MAX_FILE_LINES:
+            if path in ALLOWED_FILES:
+                seen_allowed.add(path)
+            else:
+                problems.append(f"{path}: {n} lines (limit {MAX_FILE_LINES})")
+        for fname, a, b in functions(text):
+            length = b - a + 1
+            longest.append((length, f"{path}:{a} {fname}()"))
+            key = f"{path}:{fname}"
+            if length > MAX_FUNCTION_LINES:
+                if key in ALLOWED_FUNCTIONS:
+                    seen_allowed.add(key)
+                else:
+                    problems.append(f"{path}:{a}: {fname}() is {length} lines (limit {MAX_FUNCTION_LINES})")
     for key in list(ALLOWED_FUNCTIONS) + list(ALLOWED_FILES):
         if key not in seen_allowed:
             problems.append(f"{key}: allowed to be long, but is within the limit now: remove it from the allow-list")
@@ -163,13 +149,7 @@ def main():
         for n, what in sorted(longest, reverse=True):
             if n > MAX_FUNCTION_LINES // 2 and ("(" in what or n > MAX_FILE_LINES // 2):
                 print(f"{n:6} {what}")
-    for p in problems:
-        print(p)
-    if count == 0:
-        print("check_sizes: no source file found under", root)
-        return 1
-    print(f"check_sizes: {count} files, {len(problems)} problems")
-    return 1 if problems else 0
+    return finish("check_sizes", root, count, problems)
 
 
 if __name__ == "__main__":
