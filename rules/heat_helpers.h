@@ -1,0 +1,43 @@
+// Helpers shared by the heater, sensor and fan order rules (RRF205, RRF206, RRF208): which heater or fan a command
+// names, and the later M950 that creates it. What each command means (its default heater, which letter names the
+// device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
+#pragma once
+
+#include "lint/engine/rule.h"
+#include "rules/tool_helpers.h"
+
+namespace rrflint::heat {
+
+/// A device number a command names: known, absent (the command names none), or unknown (an expression).
+struct DeviceRef {
+  int number = -1;
+  bool known = false;
+};
+
+/// The heater that M307/M570 (H required), M301/M143 (no H: heater 1) names.
+inline DeviceRef heater_named(const ParsedFile& pf, const Command& c) {
+  auto H = get_int(pf, c, 'H');
+  if (H.known()) return {static_cast<int>(H.value), H.value >= 0};
+  if (H.absent() && (c.number == 301 || c.number == 143)) return {1, true};
+  return {};  // unknown, or M307/M570 without H (RRF answers "missing parameter 'H'")
+}
+
+/// Is this node judged by other rules or by none? Lines of config-override.g (at the M501 they are RRF401's notes;
+/// unloaded, RRF404's) and of resurrect.g (a snapshot the firmware wrote, run only by M916).
+inline bool judged_elsewhere(const NodeContext& cx) {
+  const FileRole role = file_role(cx.unit().sd_path);
+  return role == FileRole::ConfigOverride || role == FileRole::Resurrect || tools::inside_m501(cx.graph, cx.id);
+}
+
+/// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when an
+/// M950 on the way creates a device of that kind from an expression (it may be n).
+inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& unknown) {
+  unknown = false;
+  return tools::find_later(cx, 'M', 950, [&](const tools::NodeCommand& k) {
+    auto v = get_int(*k.pf, *k.c, letter);
+    if (v.unknown()) unknown = true;
+    return unknown || (v.known() && v.value == n && k.pf->find(*k.c, 'C'));
+  });
+}
+
+}  // namespace rrflint::heat
