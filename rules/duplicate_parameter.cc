@@ -11,11 +11,11 @@ constexpr RuleMeta kMeta{
     .code = "RRF116",
     .name = "duplicate-parameter",
     .severity = Severity::Warning,
-    .fix = FixAvailability::Sometimes,
     .summary = "A parameter letter given twice in one command; RRF ignores the second.",
     .docs = R"md(
 ## What it does
-Reports the second parameter with the same letter in one command (`M584 X0 Y1 X2`), when both have a value.
+Reports the second parameter with the same letter in one command (`M584 X0 Y1 X2`), when both have a value
+and the values differ. An exact repeat (`F18000 … F18000`, `B0 B0`) changes nothing and is not reported.
 Lowercase axes (`'a`) and upper-case letters are different parameters. Letters inside unquoted words
 (`Cout1`), and in `( … )` after a command outside CNC mode, are left to RRF103 and RRF112.
 
@@ -35,10 +35,6 @@ M906 X800 Y800 Z800 Y1000
 M584 X0:3 Y1 Z2
 M906 X800 Y1000 Z800
 ```
-
-## Fix safety
-When the repeat has exactly the same value as the first (`S150 S150`), the fix removes it. That is safe: RRF
-never read it. A repeat with a different value is not fixed, since only the author knows which one is meant.
 
 ## References
 - rrflint: [Parameters](../firmware-behaviour.md#parameters)
@@ -78,21 +74,13 @@ void check(const FileContext& cx, Sink& out) {
       if (first.is(p) || !usable(*first)) continue;
       // Report each later duplicate once: only against the first occurrence.
       const std::string name = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
-      const bool same = pf.text(p.value) == pf.text(first->value);
-      Report r = out.report(
-          kMeta, cx.at(p.span),
-          same ? fmt::format("'{}' repeats a parameter of '{}': RRF reads only the first '{}', so the repeat does "
-                             "nothing",
-                             lex::clip(pf.text(p.span)), lex::word(pf, c), name)
-               : fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
-                             lex::clip(pf.text(p.span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
+      // An exact repeat (`S150 S150`) changes nothing: RRF reads the first, which says the same.
+      if (pf.text(p.value) == pf.text(first->value)) continue;
+      Report r =
+          out.report(kMeta, cx.at(p.span),
+                     fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
+                                 lex::clip(pf.text(p.span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
       r.note(cx.at(first->span), fmt::format("the first '{}' is here", name));
-      if (same) {  // removing an exact repeat changes nothing: a safe fix
-        uint32_t b = p.span.begin;
-        while (b > c.span.begin && lex::is_blank(t[b - 1])) --b;
-        r.fix(Fix::safe(fmt::format("remove the repeated '{}'", lex::clip(pf.text(p.span))),
-                        Edit::remove(cx.at(Span{b, p.span.end}))));
-      }
     }
   }
 }

@@ -408,6 +408,14 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files onl
   CHECK(o.code == 0);
   o = run_rrflint(t.root(), "check . --format concise --no-respect-gitignore");
   CHECK(contains(o.out, "gen/out.g"));
+  // A gitignored folder or file named on the command line is linted; --force-exclude leaves it out.
+  o = run_rrflint(t.root(), "check gen --format concise");
+  CHECK(contains(o.out, "gen/out.g"));
+  o = run_rrflint(t.root(), "check a/sys/scratch.g --format concise");
+  CHECK(contains(o.out, "a/sys/scratch.g:1:1"));
+  o = run_rrflint(t.root(), "check gen --format concise --force-exclude");
+  CHECK_FALSE(contains(o.out, "gen/out.g"));
+  CHECK(o.code == 0);
 }
 
 TEST_CASE(
