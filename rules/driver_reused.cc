@@ -45,8 +45,6 @@ M584 X0 Y1 Z2 U3
 )md",
 };
 
-constexpr std::string_view kAxisOrder = "XYZUVWABCDabcdefghijklmnopqrstuvwxyz";
-
 struct Use {
   std::string who;  // "axis U", "extruder 0"
   DriverId driver;
@@ -60,7 +58,7 @@ std::vector<Use> uses_here(const NodeContext& cx, bool& unknown) {
   const Command& c = cx.command();
   std::vector<Use> out;
   int next_new = static_cast<int>(cx.state.axes.size());
-  for (char L : kAxisOrder) {
+  for (char L : allowed_axis_letters()) {
     ParamRef p = pf.find(c, L);
     if (!p) continue;
     int idx = cx.state.axis_index(L);

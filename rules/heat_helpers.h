@@ -3,6 +3,8 @@
 // device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
 #pragma once
 
+#include <algorithm>
+
 #include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
 
@@ -20,6 +22,14 @@ inline DeviceRef heater_named(const ParsedFile& pf, const Command& c) {
   if (H.known()) return {static_cast<int>(H.value), H.value >= 0};
   if (H.absent() && (c.number == 301 || c.number == 143)) return {1, true};
   return {};  // unknown, or M307/M570 without H (RRF answers "missing parameter 'H'")
+}
+
+/// Does this M563/M140/M141 name heater h in its H list (or may it: an expression)? Those install the defaults.
+inline bool names_heater(const tools::NodeCommand& k, int h) {
+  if (!k.is('M', 563) && !k.is('M', 140) && !k.is('M', 141)) return false;
+  auto H = get_int_list(*k.pf, *k.c, 'H');
+  if (!H.known()) return H.unknown();
+  return std::find(H.value.begin(), H.value.end(), h) != H.value.end();
 }
 
 /// Is this node judged by other rules or by none? Lines of config-override.g (at the M501 they are RRF401's notes;

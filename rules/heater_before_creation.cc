@@ -1,8 +1,6 @@
 // RRF205 heater-before-creation: M307, M301, M570 or M143 names a heater before M950 creates it, and RRF rejects it.
 #include <fmt/format.h>
 
-#include <algorithm>
-
 #include "lint/engine/rule.h"
 #include "rules/heat_helpers.h"
 
@@ -73,13 +71,6 @@ bool runs_again(const NodeContext& cx, NodeId from) {
   }) != kNoNode;
 }
 
-bool names_heater(const tools::NodeCommand& k, int h) {
-  if (!k.is('M', 563) && !k.is('M', 140) && !k.is('M', 141)) return false;
-  auto H = get_int_list(*k.pf, *k.c, 'H');
-  if (!H.known()) return H.unknown();
-  return std::find(H.value.begin(), H.value.end(), h) != H.value.end();
-}
-
 /// What the heater is left with once this command is rejected.
 std::string consequence(const NodeContext& cx, int code, int h, NodeId create) {
   const NodeId after = create == kNoNode ? cx.id : create;
@@ -90,7 +81,7 @@ std::string consequence(const NodeContext& cx, int code, int h, NodeId create) {
     case 143: {
       if (set_later(cx, after, 143, h)) return "this monitor is not installed (a later M143 sets one)";
       const bool defaults = cx.graph.nodes.find_if(after + 1, cx.segment().end, [&](NodeId, const Node& n) {
-        return n.kind == NodeKind::Command && names_heater(tools::command_at(cx.machine, n), h);
+        return n.kind == NodeKind::Command && heat::names_heater(tools::command_at(cx.machine, n), h);
       }) != kNoNode;
       return defaults ? "the heater has only the default over-temperature monitor"
                       : "the heater has no over-temperature monitor at all (its limit is 2000 °C)";
@@ -104,7 +95,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (!cx.is('M', 307) && !cx.is('M', 301) && !cx.is('M', 570) && !cx.is('M', 143)) return;
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (c.fraction >= 0 || s.firmware < kRrf3_0 || !s.heaters_known || s.unknown_baseline) return;
+  if (s.firmware < kRrf3_0 || !s.heaters_known || s.unknown_baseline) return;
   if (heat::judged_elsewhere(cx)) return;
   const heat::DeviceRef r = heat::heater_named(cx.parsed(), c);
   if (!r.known || s.heaters.count(r.number)) return;

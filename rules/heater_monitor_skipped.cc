@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
-#include "rules/tool_helpers.h"
+#include "rules/heat_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -48,17 +48,6 @@ M563 P0 D0 H1
 )md",
 };
 
-bool names_heater(const tools::NodeCommand& k, int h) {
-  const Command& c = *k.c;
-  if (c.letter != 'M' || c.fraction >= 0) return false;
-  if (c.number != 563 && c.number != 140 && c.number != 141) return false;
-  auto H = get_int_list(*k.pf, c, 'H');
-  if (!H.known()) return H.unknown();
-  for (int64_t v : H.value)
-    if (v == h) return true;
-  return false;
-}
-
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is_command() || !cx.in_boot()) return;
   const Command& c = cx.command();
@@ -73,14 +62,7 @@ void check(const NodeContext& cx, Sink& out) {
     if (h < 0 || s.heaters.count(h)) continue;
     // The later M950 that creates the heater.
     bool unknown = false;
-    const NodeId create = cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId, const Node& n) {
-      if (n.kind != NodeKind::Command) return false;
-      const tools::NodeCommand k = tools::command_at(cx.machine, n);
-      if (!k.c->is('M', 950)) return false;
-      auto v = get_int(*k.pf, *k.c, 'H');
-      unknown = v.unknown();  // some heater is created from an expression: cannot tell
-      return unknown || (v.known() && v.value == h && k.pf->find(*k.c, 'C'));
-    });
+    const NodeId create = heat::later_creation(cx, 'H', h, unknown);
     if (unknown) return;
     if (create == kNoNode) continue;
     bool model = false;
@@ -99,7 +81,7 @@ void check(const NodeContext& cx, Sink& out) {
         if (v.known() && v.value == h) model = true;
         return false;
       }
-      return names_heater(k, h);
+      return heat::names_heater(k, h);
     }) != kNoNode;
     if (closed) continue;
     const bool bed = c.number != 563;

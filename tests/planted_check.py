@@ -98,14 +98,15 @@ def main():
                 print(f"planted: {where}: rrflint exited {out.returncode}: {out.stderr.strip()}")
                 failed += 1
                 continue
-            hits = [d for d in json.loads(out.stdout)["diagnostics"]
+            diagnostics = json.loads(out.stdout)["diagnostics"]
+            hits = [d for d in diagnostics
                     if d["code"] == code and os.path.abspath(d["file"]) == os.path.abspath(os.path.join(root, rel))
                     and d["line"] == line]
             ok = bool(hits)
             per_code.setdefault(code, [0, 0])[0 if ok else 1] += 1
             if not ok:
                 failed += 1
-                got = [f"{d['code']} {d['file']}:{d['line']}" for d in json.loads(out.stdout)["diagnostics"]]
+                got = [f"{d['code']} {d['file']}:{d['line']}" for d in diagnostics]
                 print(f"planted: {where}: {code} NOT found at {folder}/{rel}:{line} (found: {got or 'nothing'})")
             elif verbose:
                 print(f"planted: {where}: {code} found at {folder}/{rel}:{line}: {hits[0]['message']}")
