@@ -53,7 +53,7 @@ struct Use {
 };
 
 /// Axes and extruders this M584 maps, with the axis index each letter gets.
-std::vector<Use> uses_here(const NodeContext& cx, bool& unknown) {
+std::vector<Use> uses_here(const NodeContext& cx) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   std::vector<Use> out;
@@ -64,16 +64,12 @@ std::vector<Use> uses_here(const NodeContext& cx, bool& unknown) {
     int idx = cx.state.axis_index(L);
     if (idx < 0) idx = next_new++;
     auto d = get_driver_list(pf, c, L);
-    if (!d.known()) {
-      unknown = true;
-      continue;
-    }
+    if (!d.known()) continue;  // an expression: its drivers are not checked
     for (DriverId id : d.value) out.push_back({fmt::format("axis {}", L), id, idx, cx.at(p->span)});
   }
   if (ParamRef p = pf.find(c, 'E')) {
     auto d = get_driver_list(pf, c, 'E');
-    if (!d.known()) unknown = true;
-    else
+    if (d.known())
       for (size_t i = 0; i < d.value.size(); ++i)
         out.push_back({fmt::format("extruder {}", i), d.value[i], -1, cx.at(p->span)});
   }
@@ -103,8 +99,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (!cx.is('M', 584) || !cx.certain()) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
-  bool unknown = false;
-  std::vector<Use> here = uses_here(cx, unknown);
+  std::vector<Use> here = uses_here(cx);
   std::vector<Use> before = earlier_uses(cx);
   auto P = get_int(pf, c, 'P');
   const int visible = P.known() ? static_cast<int>(P.value) : 1000;
