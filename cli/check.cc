@@ -29,6 +29,7 @@ struct Totals {
   bool failing = false, io_error = false;
   std::string diff;
   std::optional<std::string> stdout_text;  // fixed or annotated stdin
+  std::vector<MachineTarget> machines;     // each linted machine's firmware target (json)
 };
 
 // The settings of a job's machine: its sys folder (or a lone file's folder) finds the governing config.
@@ -275,6 +276,7 @@ struct JobRun {
       t.failing = t.failing || d.severity >= eff.fail_on;
       t.diags.push_back(std::move(d));
     }
+    t.machines.push_back(MachineTarget{job.title, r.target});
     if (co.verbose) {
       const Target& tg = r.target;
       std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
@@ -372,6 +374,7 @@ void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const C
   ro.docs_base = docs_base;
   ro.files_checked = t.files;
   ro.fixed = t.fixed;
+  ro.machines = std::move(t.machines);
   ro.unsafe_fixes_enabled = co.unsafe_fixes;
   ro.cwd = fs::current_path(ec);
   ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);

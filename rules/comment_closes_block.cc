@@ -3,6 +3,7 @@
 
 #include "lint/engine/rule.h"
 #include "rules/lex_common.h"
+#include "rules/version_gate.h"
 
 namespace rrflint {
 namespace {
@@ -22,6 +23,12 @@ On targets before RRF 3.6.0-beta.3, reports a whole-line `;` comment at column 0
 
 A column-0 comment after the last line of a block (the next code line is back at the block's own level) is
 harmless and not reported. Indented comments never matter.
+
+## Firmware versions
+A **hazard** of RRF before 3.6.0-beta.3, whose parser ends a block at a column-0 comment. At such a target it keeps
+its severity. When no `--firmware` is given and the files do not rule out such a version (the target is newer, but
+nothing in the files needs a version that new), it is reported as `info` with a note that names the versions and
+the evidence; see [Firmware target](../firmware-behaviour.md#firmware-target).
 
 ## Why is this bad?
 RRF stores a column-0 comment as a command at indent 0, and every line at indent 0 ends the open blocks.
@@ -81,7 +88,12 @@ bool conditional(MetaKind k) {
 }
 
 void check(const FileContext& cx, Sink& out) {
-  if (cx.target.version >= kFixedIn) return;
+  constexpr auto before_fix = [](Version v) { return v < kFixedIn; };
+  const std::optional<gate::Gate> g = gate::hazard(cx.target, before_fix, Severity::Error);
+  if (!g) return;
+  constexpr std::string_view kVersions = "before 3.6.0-beta.3";
+  const std::string on = gate::on(*g, cx.target, kVersions);
+  const Severity warning = g->at == HazardAt::Target ? Severity::Warning : Severity::Info;
   const ParsedFile& pf = cx.parsed();
   const LineTable& lines = pf.lines;
   std::vector<Block> open;   // blocks with indent > 0, innermost last, as the lines' indentation shows them
@@ -117,13 +129,15 @@ void check(const FileContext& cx, Sink& out) {
       for (const Block& b : open)
         if (b.head.indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
       if (!head) continue;  // an else/elif with no if is a syntax error (RRF100)
-      out.report(kMeta, Severity::Error, cx.at(at),
-                 fmt::format("comment at column 0 ends the open blocks on RRF {}: the '{}' on line {} then fails "
-                             "with \"'{}' did not follow 'if'\" when the condition is false, which aborts the rest "
-                             "of the file",
-                             cx.target.version.str(), meta_keyword(next.meta), next_no, meta_keyword(next.meta)))
-          .note(cx.at(head->head.code), fmt::format("the '{}' opens here", meta_keyword(head->opener)))
-          .fix(std::move(fix));
+      Report r =
+          out.report(kMeta, g->severity, cx.at(at),
+                     fmt::format("comment at column 0 ends the open blocks on {}: the '{}' on line {} then fails "
+                                 "with \"'{}' did not follow 'if'\" when the condition is false, which aborts the "
+                                 "rest of the file",
+                                 on, meta_keyword(next.meta), next_no, meta_keyword(next.meta)));
+      r.note(cx.at(head->head.code), fmt::format("the '{}' opens here", meta_keyword(head->opener)));
+      gate::explain(r, *g, cx.target, cx.at(at), kVersions);
+      r.fix(std::move(fix));
       continue;
     }
     // The blocks the next line would have continued: those at or below its indent.
@@ -132,13 +146,14 @@ void check(const FileContext& cx, Sink& out) {
       if (b.indent <= next.indent && conditional(b.opener)) escaped = &b;
     if (!escaped) continue;  // the comment follows the last line of the block: harmless
     const bool loop = escaped->opener == MetaKind::While;
-    Report r = out.report(
-        kMeta, Severity::Warning, cx.at(at),
-        fmt::format(
-            "comment at column 0 ends the '{}' block on RRF {}: line {} and the rest of the block {}",
-            meta_keyword(escaped->opener), cx.target.version.str(), next_no,
-            loop ? "run once after the loop instead of in every pass" : "run even when the condition is false"));
+    Report r =
+        out.report(kMeta, warning, cx.at(at),
+                   fmt::format("comment at column 0 ends the '{}' block on {}: line {} and the rest of the block {}",
+                               meta_keyword(escaped->opener), on, next_no,
+                               loop ? "run once after the loop instead of in every pass"
+                                    : "run even when the condition is false"));
     r.note(cx.at(escaped->head.code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
+    gate::explain(r, *g, cx.target, cx.at(at), kVersions);
     r.fix(std::move(fix));
   }
 }

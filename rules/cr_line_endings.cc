@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "rules/version_gate.h"
 
 namespace rrflint {
 namespace {
@@ -16,6 +17,12 @@ constexpr RuleMeta kMeta{
 ## What it does
 Reports a file whose lines end with a lone carriage return (old Mac line endings) and no line feed, on targets
 from RRF 3.4.6 (3.4 series) or 3.5.0-beta.2.
+
+## Firmware versions
+A **hazard** of RRF 3.4.6 and later on the 3.4 line and of 3.5.0-beta.2 and later. At such a target it is an error.
+When no `--firmware` is given and the files do not rule out such a version (the target is newer, but nothing in the
+files needs a version that new), it is reported as `info` with a note that names the versions and the evidence; see
+[Firmware target](../firmware-behaviour.md#firmware-target).
 
 ## Why is this bad?
 When RRF reads a file it discards CR characters; only LF ends a line. A CR-only file is therefore **one single
@@ -44,7 +51,10 @@ The fix replaces every lone CR with LF. It is safe: it changes only line endings
 
 void check(const FileContext& cx, Sink& out) {
   const SourceFile& src = cx.source();
-  if (!src.endings().cr_only() || !cr_is_not_a_line_end(cx.target.version)) return;
+  if (!src.endings().cr_only()) return;
+  const std::optional<gate::Gate> g = gate::hazard(cx.target, cr_is_not_a_line_end, kMeta.severity);
+  if (!g) return;
+  constexpr std::string_view kVersions = "from 3.4.6 (3.4 series) and from 3.5.0-beta.2";
   Fix fix = Fix::safe("replace CR line endings with LF");
   std::string_view t = src.text();
   for (uint32_t i = 0; i < t.size(); ++i)
@@ -52,11 +62,14 @@ void check(const FileContext& cx, Sink& out) {
   const Span first = src.line_span(0);
   const bool comment_first = !t.empty() && src.slice(first).find_first_not_of(" \t") != std::string_view::npos &&
                              src.slice(first)[src.slice(first).find_first_not_of(" \t")] == ';';
-  out.report(kMeta, cx.at(Span{first.end, std::min(first.end + 1, src.size())}),
-             fmt::format("the file uses CR-only line endings: RRF {} reads all {} lines as one line{}",
-                         cx.target.version.str(), src.line_count(),
-                         comment_first ? ", and since it starts with a comment the whole file does nothing" : ""))
-      .fix(std::move(fix));
+  const Location at = cx.at(Span{first.end, std::min(first.end + 1, src.size())});
+  Report r = out.report(
+      kMeta, g->severity, at,
+      fmt::format("the file uses CR-only line endings: {} {} all {} lines as one line{}",
+                  gate::on(*g, cx.target, kVersions), g->at == HazardAt::Target ? "reads" : "read", src.line_count(),
+                  comment_first ? ", and since it starts with a comment the whole file does nothing" : ""));
+  gate::explain(r, *g, cx.target, at, kVersions);
+  r.fix(std::move(fix));
 }
 
 }  // namespace

@@ -24,6 +24,11 @@ It stays silent on RRF 2.x–3.2 targets (they have default extruders), for valu
 the extruder count is not known (an `M584 E` with expressions or inside an `if`), and for commands inside an
 `if`/`while`.
 
+## Firmware versions
+A **hazard** of RRF 3.3 and later, which have no default extruder. It is judged at the target only. A config that
+uses extruders with no `M584 E` is not taken as evidence of an older version: that is the mistake this rule
+reports.
+
 ## Why is this bad?
 - M563 checks its drives after deleting any old tool with that number: `bad drive number`, and the tool number
   then does not exist at all. Every later G10, M568 or T for it fails or selects nothing.

@@ -28,12 +28,14 @@ a Z is added later.
 
 ## Example
 ```gcode
+M584 X0 Y1 Z2 E3
 M563 P0 D0 H1
 G10 P0 X0 Y0
 ```
 
 ## Use instead
 ```gcode
+M584 X0 Y1 Z2 E3
 M563 P0 D0 H1
 G10 P0 X0 Y0 Z0
 ```

@@ -37,6 +37,7 @@ advise: "you want explicitly to set Z0.0".
 
 ## Example
 ```gcode
+M584 X0 Y1 Z2 E3
 M563 P0 S"Left" D0 H1
 G10 P0 X0 Y0 Z-1.2
 ; offsets re-measured later
@@ -45,6 +46,7 @@ G10 P0 X21.5 Y-0.3      ; Z stays -1.2
 
 ## Use instead
 ```gcode
+M584 X0 Y1 Z2 E3
 M563 P0 S"Left" D0 H1
 G10 P0 X0 Y0 Z-1.2
 ; offsets re-measured later

@@ -19,6 +19,9 @@ Reports a tool-form `G10` (no `L`, or `L1`) that sets standby (`R`) or active (`
 RRF 3.3 and later. The rule is silent for older targets, where `M568` does not set temperatures, and in
 resurrect.g, which the firmware writes itself (with `G10` up to RRF 3.4).
 
+## Firmware versions
+A **deprecation** from RRF 3.3, where M568 is the documented form. It is judged at the target only.
+
 ## Why is this bad?
 From RRF 3.3 `M568` sets tool temperatures, and the G-code dictionary says the temperature form of `G10` may be
 removed in a future version. The firmware's deprecation warning is compiled out, so nothing on the machine tells

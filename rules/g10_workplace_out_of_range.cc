@@ -19,6 +19,10 @@ Checks the `L` and `P` parameters of `G10`:
 - with `L2`/`L20`, `P` names the coordinate system: 1–9 (G54 = 1 … G59.3 = 9). From RRF 3.4 `P0` (or no `P`)
   means the current system; before 3.4 `P0` is rejected.
 
+## Firmware versions
+A **hazard** whose limit depends on the version (RRF 3.4 and later reject P above the workplace count). It is
+judged at the target only.
+
 ## Why is this bad?
 Any other `L` gives `Bad or missing parameter`. From RRF 3.4 a `P` of 10 or more gives `parameter 'P' too
 high`; RRF 3.3 and older answer `Bad or missing parameter` for `P0` or `P10`. Either way nothing is set: the

@@ -17,6 +17,10 @@ Counts the characters RRF stores for each line (leading indentation, the line nu
 and CNC-mode `( )` comments are not stored; quoted strings and `{…}` text are) and reports lines longer than
 the target's limit: 255 from RRF 3.4, 200 for 3.1–3.3, 160 before.
 
+## Firmware versions
+A **hazard** whose limit and outcome depend on the version (from 3.1 an overlong line aborts the file). It is
+judged at the target only.
+
 ## Why is this bad?
 From RRF 3.1 an over-long line raises `GCode command too long` while the line is checked for meta
 commands, which **aborts the rest of config.g**. RRF 3.0 drops the line with `G-Code buffer … length overflow`

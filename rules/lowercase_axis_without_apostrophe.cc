@@ -21,6 +21,9 @@ Checks the axis letters of `M584`:
 - a lowercase axis with `'` beyond the target's highest lowercase axis letter: `'f` on Duet 2 and Duet 3 Mini
   from RRF 3.5, `'l` in RRF 3.3 and 3.4 (`'a`…`'z` only on the Duet 3 MB6HC/MB6XD).
 
+## Firmware versions
+A **hazard** whose limit depends on the version and the board. It is judged at the target only.
+
 ## Why is this bad?
 RRF upper-cases every parameter letter that has no `'` in front: `M584 a3` creates (or remaps) axis `A`, not
 axis `a`, and a letter that is not an axis letter (`f3`) is ignored. A `'g` on a board whose firmware only

@@ -3,6 +3,7 @@
 
 #include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
+#include "rules/version_gate.h"
 
 namespace rrflint {
 namespace {
@@ -17,6 +18,12 @@ constexpr RuleMeta kMeta{
 Reports an `M568` that sets temperatures (`R`, `S` other than 0 or 1, or `A`) on a target before RRF 3.3.
 `M568 P<n> S0`/`S1` on such a target is the old "mixing off/on" form, which also does nothing but was not meant
 to set a temperature; `m568-legacy-mix-meaning` (RRF329) covers it on newer targets.
+
+## Firmware versions
+A **hazard** of RRF before 3.3, where M568 does nothing. At such a target it is a warning. When no `--firmware` is
+given and the files do not rule out such a version (the target is newer, but nothing in the files needs a version
+that new), it is reported as `info` with a note that names the versions and the evidence; see [Firmware
+target](../firmware-behaviour.md#firmware-target).
 
 ## Why is this bad?
 Before RRF 3.3, `M568` was the obsolete "turn tool mixing on/off" command: RRF 1.21 to 3.2 reply `The M568
@@ -58,16 +65,20 @@ bool sets_temperatures(const ParsedFile& pf, const Command& c) {
 }
 
 void check(const FileContext& cx, Sink& out) {
-  const Version fw = cx.target.version;
-  if (fw >= kRrf3_3) return;
+  constexpr auto before_3_3 = [](Version v) { return v < kRrf3_3; };
+  const std::optional<gate::Gate> g = gate::hazard(cx.target, before_3_3, kMeta.severity);
+  if (!g) return;
+  constexpr std::string_view kVersions = "3.2 and earlier";
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('M', 568)) {
     const Command& c = pf.commands[ci];
     if (!c.is('M', 568) || !sets_temperatures(pf, c)) continue;
-    out.report(kMeta, cx.at(c.span),
-               fmt::format("{} sets tool heater settings, but before RRF 3.3 M568 does nothing: RRF {} replies 'The "
-                           "M568 command is no longer needed'; use 'G10 P<n> R… S…' there",
-                           tools::quote(pf, c), fw.str()));
+    Report r = out.report(kMeta, g->severity, cx.at(c.span),
+                          fmt::format("{} sets tool heater settings, but before RRF 3.3 M568 does nothing: {} {} "
+                                      "'The M568 command is no longer needed'; use 'G10 P<n> R… S…' there",
+                                      tools::quote(pf, c), gate::on(*g, cx.target, kVersions),
+                                      g->at == HazardAt::Target ? "replies" : "reply"));
+    gate::explain(r, *g, cx.target, cx.at(c.span), kVersions);
   }
 }
 

@@ -18,6 +18,9 @@ Reports `M568 … S1` with no `R`, `A` or `F`, on targets RRF 3.3 and later. Tha
 mixing on for tool n", still found in configs carried over from old machines. `S0` ("mixing off") is not
 reported: an active temperature of 0 °C is harmless.
 
+## Firmware versions
+A **hazard** of RRF 3.3 and later, where `S1` is a temperature. It is judged at the target only.
+
 ## Why is this bad?
 RRF 1.x used `M568 P<n> S1` to enable mixing. From 1.21 the command did nothing, and from RRF 3.3 `M568` sets
 tool settings: `S1` now sets tool n's active temperature to 1 °C. It does not enable mixing (mixing follows the

@@ -16,6 +16,10 @@ constexpr RuleMeta kMeta{
 Counts the nesting of files the boot sequence (and each macro) runs, config.g itself being level 1, and reports the
 call that goes past the target's `MaxStackDepth`: 10 from RRF 3.4, 7 for 3.01–3.3, 5 before.
 
+## Firmware versions
+A **hazard** whose depth limit depends on the version (5, 7 from 3.01, 10 from 3.4). It is judged at the target
+only.
+
 ## Why is this bad?
 RRF answers `Push(): stack overflow on Trigger` and aborts the whole stack of running files: the rest of config.g does
 not run.

@@ -17,6 +17,9 @@ constexpr RuleMeta kMeta{
 Reports an `M563` whose `P` (tool number) is 50 or more, on targets RRF 3.1 and later. RRF 2 accepted any
 number up to 65535, so old configs sometimes number tools 100, 200 …
 
+## Firmware versions
+A **hazard** of RRF 3.1 and later. It is judged at the target only.
+
 ## Why is this bad?
 From RRF 3.1 tool numbers are 0–49 (`MaxTools` = 50). A higher number gives `parameter 'P' too high`: the tool
 is not created, and every later `G10`, `M568` or `T` for it fails or selects nothing.

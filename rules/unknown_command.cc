@@ -17,6 +17,9 @@ Checks every G and M code against the table of codes each RRF version implements
 firmware's dispatch code). A code the target does not implement is reported unless the SD card has the macro
 RRF runs in its place: `/sys/Gnn.g`, `/sys/Mnn.g` or (3.4+) `/sys/Mnn.f.g`.
 
+## Firmware versions
+A **hazard**: each version implements its own set of codes. It is judged at the target only.
+
 ## Why is this bad?
 RRF answers `Mnnn: Command is not supported` and does nothing. Usually the code is a typo (`M596` for `M569`),
 a command from another firmware (Marlin's `M851`), or a command newer than the firmware on the board.
@@ -40,48 +43,8 @@ M572 D0 S0.05   ; pressure advance
 )md",
 };
 
-struct CodeRange {
-  char letter;
-  int number;
-  int fraction;
-  int first, last;
-};
-
-constexpr CodeRange kCodes[] = {
-#define CODE(l, n, f, a, b) {l, n, f, a, b},
-#include "lint/boot/command_table.inc"
-#undef CODE
-};
-
-int version_index(Version v) {
-  if (v.major < 3) return 0;
-  if (v.minor >= 6 || v.major > 3) return 7;
-  return 1 + v.minor;
-}
-
-// The versions (bit per version index) that implement each code, looked up per command rather than searched.
-struct CodeIndex {
-  static constexpr int kNumbers = 1024, kFractions = 11;  // fraction -1..9
-  std::vector<uint8_t> versions = std::vector<uint8_t>(2 * kNumbers * kFractions, 0);
-  CodeIndex() {
-    for (const CodeRange& c : kCodes)
-      if (c.number >= 0 && c.number < kNumbers && c.fraction >= -1 && c.fraction <= 9)
-        for (int v = c.first; v <= c.last; ++v) versions[slot(c.letter, c.number, c.fraction)] |= uint8_t(1u << v);
-  }
-  static size_t slot(char letter, int number, int fraction) {
-    return (static_cast<size_t>(letter == 'M') * kNumbers + static_cast<size_t>(number)) * kFractions +
-           static_cast<size_t>(fraction + 1);
-  }
-};
-
-bool implemented(char letter, int number, int fraction, int vi) {
-  static const CodeIndex index;
-  if (number < 0 || number >= CodeIndex::kNumbers || fraction < -1 || fraction > 9) return false;
-  return (index.versions[CodeIndex::slot(letter, number, fraction)] >> vi) & 1u;
-}
-
 void check(const FileContext& cx, Sink& out) {
-  const int vi = version_index(cx.target.version);
+  const int vi = code_version_index(cx.target.version);
   const ParsedFile& pf = cx.parsed();
   // By code: a code that exists, with no fractional command, clears all of its commands at once.
   auto check_command = [&](uint32_t i) {
@@ -95,7 +58,7 @@ void check(const FileContext& cx, Sink& out) {
                                        : fmt::format("{}{}", c.letter, c.number);
     if (cx.machine.has_file("/sys/" + name + ".g")) return;
     bool elsewhere = false;
-    for (int v = 0; v <= 7; ++v) elsewhere = elsewhere || implemented(c.letter, c.number, c.fraction, v);
+    for (int v = 0; v < kCodeVersions; ++v) elsewhere = elsewhere || implemented(c.letter, c.number, c.fraction, v);
     std::string why = elsewhere
                           ? fmt::format("RRF {} does not implement it (other versions do)", cx.target.version.str())
                           : fmt::format("RRF does not implement it");

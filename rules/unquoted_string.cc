@@ -26,6 +26,10 @@ RRF 2 `M558 C3` and `M591 C3` were endstop numbers. An unquoted `M98` file name 
 given (`--firmware`) as 3.5 or later, or when the files show 3.5 features; an inferred target alone is not
 enough, since the unquoted name itself suggests a config written for 3.4 or earlier.
 
+## Firmware versions
+A **hazard** of the versions that need quotes for the parameter. It is judged at the target only. An unquoted M98
+file name needs a given target or evidence of 3.5 or later.
+
 ## Why is this bad?
 RRF answers `expected a string expression` and rejects the command: the pin, sensor, endstop or tool is not
 configured. RRF 3 also splits an unquoted `xstop` into parameters `X`, `S`, `T`, `O`, `P`. For `M98`, RRF 3.4
@@ -133,7 +137,7 @@ bool needs_quotes(const Target& target, int number) {
   if (target.version < from) return false;
   if (number != 98 || target.version_given) return true;
   for (const Evidence& e : target.evidence)
-    if (e.kind != Evidence::Kind::Ceiling && e.version >= kRrf3_5) return true;
+    if (e.version >= kRrf3_5) return true;  // a hint or a floor
   return false;
 }
 

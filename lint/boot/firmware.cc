@@ -1,5 +1,8 @@
 #include "lint/boot/firmware.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <fmt/format.h>
 #include <cctype>
 
@@ -114,6 +117,56 @@ int max_line_length(Version v) {
   if (v >= kRrf3_4) return 255;
   if (v >= kRrf3_1) return 200;
   return 160;
+}
+
+namespace {
+
+struct CodeRange {
+  char letter;
+  int number;
+  int fraction;
+  int first, last;
+};
+
+constexpr CodeRange kCodes[] = {
+#define CODE(l, n, f, a, b) {l, n, f, a, b},
+#include "lint/boot/command_table.inc"
+#undef CODE
+};
+
+// The versions (bit per version index) that implement each code, looked up per command rather than searched.
+struct CodeIndex {
+  static constexpr int kNumbers = 1024, kFractions = 11;  // fraction -1..9
+  std::vector<uint8_t> versions = std::vector<uint8_t>(2 * kNumbers * kFractions, 0);
+  CodeIndex() {
+    for (const CodeRange& c : kCodes)
+      if (c.number >= 0 && c.number < kNumbers && c.fraction >= -1 && c.fraction <= 9)
+        for (int v = c.first; v <= c.last; ++v) versions[slot(c.letter, c.number, c.fraction)] |= uint8_t(1u << v);
+  }
+  static size_t slot(char letter, int number, int fraction) {
+    return (static_cast<size_t>(letter == 'M') * kNumbers + static_cast<size_t>(number)) * kFractions +
+           static_cast<size_t>(fraction + 1);
+  }
+};
+
+}  // namespace
+
+int code_version_index(Version v) {
+  if (v.major < 3) return 0;
+  if (v.minor >= 6 || v.major > 3) return kCodeVersions - 1;
+  return 1 + v.minor;
+}
+
+Version code_index_version(int i) {
+  constexpr Version kByIndex[kCodeVersions] = {Version(2, 5, 1), Version(3, 0, 0), Version(3, 1, 1), Version(3, 2, 2),
+                                               Version(3, 3, 0), Version(3, 4, 6), Version(3, 5, 4), kLatestVersion};
+  return kByIndex[std::clamp(i, 0, kCodeVersions - 1)];
+}
+
+uint8_t code_versions(char letter, int number, int fraction) {
+  static const CodeIndex index;
+  if (number < 0 || number >= CodeIndex::kNumbers || fraction < -1 || fraction > 9) return 0;
+  return index.versions[CodeIndex::slot(letter, number, fraction)];
 }
 
 bool cr_is_not_a_line_end(Version v) {

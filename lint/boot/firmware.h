@@ -50,6 +50,8 @@ struct Version {
 
 /// The newest version rrflint knows; the default target when nothing says otherwise.
 inline constexpr Version kLatestVersion{3, 6, 0};
+/// The oldest version rrflint knows: the floor when no feature says otherwise.
+inline constexpr Version kOldestVersion{1, 0, 0};
 
 // The versions the code compares with (see Version): kRrfX_Y is the first build of X.Y, pre-releases included.
 inline constexpr Version kRrf3_0 = Version::first_of(3, 0);
@@ -86,6 +88,17 @@ int default_extruders(Version v);
 /// Does a lone CR fail to end a line in a file? From 3.4.6 on the 3.4 line and from 3.5.0-beta.2, RRF discards CR
 /// when it reads a file, so a file with CR-only line endings is one line.
 bool cr_is_not_a_line_end(Version v);
+
+/// The versions of lint/boot/command_table.inc, by index: 0 = 2.05, 1 = 3.0, 2 = 3.1, ... 7 = 3.6.
+inline constexpr int kCodeVersions = 8;
+int code_version_index(Version v);
+/// The newest release of the version of index `i` (0 -> 2.05.1, 4 -> 3.3.0, 7 -> the newest known).
+Version code_index_version(int i);
+/// The versions (bit i: index i) that implement a G or M code natively; fraction -1 is the code without one.
+uint8_t code_versions(char letter, int number, int fraction);
+inline bool implemented(char letter, int number, int fraction, int index) {
+  return (code_versions(letter, number, fraction) >> index) & 1u;
+}
 
 /// A firmware target as users write it (`--firmware`, `firmware =` in .rrflint.toml): "3.5", "3.4.6", "3.5.0beta2",
 /// "3.5.0-beta.2", "3.01-RC3", "2.02RC2". A version newer than kLatestVersion is taken as kLatestVersion, with a

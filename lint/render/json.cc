@@ -62,6 +62,27 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   json arr = json::array();
   for (const Diagnostic& d : diags) arr.push_back(diagnostic_json(sm, d, o.docs_base));
   doc["diagnostics"] = arr;
+  json machines = json::array();
+  for (const MachineTarget& m : o.machines) {
+    const Target& t = m.target;
+    json ev = json::array();
+    for (const Evidence& e : t.evidence)
+      ev.push_back({{"kind", e.kind == Evidence::Kind::Hint ? "hint" : "floor"},
+                    {"version", floor_text(e.version)},
+                    {"what", sanitize(e.what)},
+                    {"file", sanitize(sm.get(e.loc.file).display_path())},
+                    {"line", sm.get(e.loc.file).position(e.loc.span.begin).line}});
+    machines.push_back({{"machine", sanitize(m.title)},
+                        {"firmware",
+                         {{"version", t.version.str()},
+                          {"source", source_name(t.source)},
+                          {"floor", floor_text(t.floor)},
+                          {"reason", sanitize(t.reason)},
+                          {"evidence", ev}}},
+                        {"board", board_name(t.board)},
+                        {"board_reason", sanitize(t.board_reason)}});
+  }
+  doc["machines"] = machines;
   const Counts c = count(diags);
   doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings},         {"infos", c.infos},
                     {"fixable", c.fixable}, {"files_with_findings", c.files}, {"files_checked", o.files_checked},

@@ -15,6 +15,7 @@
 
 #include "lint/base/diagnostic.h"
 #include "lint/base/source.h"
+#include "lint/boot/infer.h"
 
 namespace rrflint {
 
@@ -28,6 +29,12 @@ bool is_web_url(std::string_view url);
 
 class RuleSet;
 
+/// A linted machine and its firmware target, for the `machines` field of `--format json`.
+struct MachineTarget {
+  std::string title;  // the folder or file as the user named it
+  Target target;
+};
+
 struct RenderOptions {
   /// The rules that exist (SARIF lists them all in tool.driver.rules); null: none listed.
   const RuleSet* rules = nullptr;
@@ -36,7 +43,8 @@ struct RenderOptions {
   bool unsafe_fixes_enabled = false;
   std::string docs_base;  // where rule pages live, for rule_url(); ends with '/'
   size_t files_checked = 0;
-  size_t fixed = 0;  // findings fixed by --fix before this report (text summary)
+  std::vector<MachineTarget> machines;  // json: each machine's target, its source and evidence
+  size_t fixed = 0;                     // findings fixed by --fix before this report (text summary)
   // SARIF: artifact URIs are relative to `uri_base` (the git top-level, else the working directory); display
   // paths are relative to `cwd`. Both absolute; empty means the current directory.
   std::filesystem::path uri_base;
