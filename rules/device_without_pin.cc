@@ -30,7 +30,7 @@ port's pin (none) and answers without an error.
 ## Why is this bad?
 RRF 3 has no default heaters or fans: only `M950 … C"pin"` creates one. Without `C`, RRF looks the device up,
 finds nothing and answers `Heater n does not exist` (or `Can't change sensor number of existing heater` when
-the line has a `T`), or `Fan n not found` (`Fan n does not exist` before 3.5). At boot that is one error line
+the line has a `T`), or `Fan n not found` (`Fan n does not exist` before 3.5.0-rc.4). At boot that is one error line
 among many, and the machine is left with no such heater or fan: every later `M307`, `M143`, `M301` or `M570`
 for the heater (`Heater n not found`), and every `M106 P` for the fan, fails as well.
 
@@ -71,9 +71,13 @@ char device_letter(const ParsedFile& pf, const Command& c) {
   return found == 'H' || found == 'F' ? found : 0;
 }
 
+/// ConfigureFanPort() says "Fan n not found" from 3.5.0-rc.4, "Fan n does not exist" before.
+constexpr Version kFanNotFound = Version::rc(3, 5, 0, 4);
+
 /// RRF's answer to an M950 without C for a device that does not exist.
 std::string answer(const NodeContext& cx, char letter, int n) {
-  if (letter == 'F') return fmt::format("Fan {} {}", n, cx.state.firmware >= kRrf3_5 ? "not found" : "does not exist");
+  if (letter == 'F')
+    return fmt::format("Fan {} {}", n, cx.state.firmware >= kFanNotFound ? "not found" : "does not exist");
   if (cx.parsed().find(cx.command(), 'T')) return "Can't change sensor number of existing heater";
   return fmt::format("Heater {} does not exist", n);
 }
