@@ -16,6 +16,9 @@ constexpr RuleMeta kMeta{
     .docs = R"md(
 ## What it does
 Reports a blank or tab in front of a `:` in a colon-separated list parameter (`E3 :4`, `X80 : 80`).
+A value after a blank that does not start with `:` (`Y80 409:409`, where `E` was meant) has no letter at all:
+that is [value-without-letter](value-without-letter.md) (RRF120). In `X80 409 :5` each rule reports its own
+part: RRF120 the `409`, this rule the `:5`.
 
 ## Why is this bad?
 After each value RRF continues the list only if the very next character is `:`. A blank there ends the list:
@@ -41,6 +44,7 @@ written.
 ## References
 - rrflint: [Numbers and lists](../firmware-behaviour.md#numbers-and-lists)
 - RepRapFirmware 3.5.3: [StringParser.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodeBuffer/StringParser.cpp) (`GetFloatArray()` and its siblings: the list goes on only at a `:`)
+- See also: [value-without-letter](value-without-letter.md) (RRF120), for a value after a blank that is not a `:`
 )md",
 };
 
