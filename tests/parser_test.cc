@@ -827,3 +827,19 @@ TEST_CASE("source: span_has finds a byte in any span, also near the end of the b
         if (span_has(t, Span{b, e}, c) != want) FAIL("span [" << b << ", " << e << ") byte " << c);
       }
 }
+
+TEST_CASE("parser: lines M28 writes into a file are in no code index", "[parser]") {
+  using Range = std::pair<uint32_t, uint32_t>;
+  auto p = parse_text(
+      "G28\nM28 start.g\nM98 P\"x.g\"\nT0\nM29\nM98 P\"y.g\"\nM560 P\"a.htm\"\n<b>M98 P\"z.g\"</b>\n"
+      "<!-- **EoF** -->\nG1 X1\nM28 tail.g\nG1 X2\n");
+  REQUIRE(p.pf.written_lines == std::vector<Range>{{2, 5}, {7, 9}, {11, 12}});
+  CHECK(p.pf.with_code('M', 98).size() == 1);  // only line 6's
+  CHECK(p.pf.commands[*p.pf.with_code('M', 98).begin()].line == 5);
+  CHECK(p.pf.with_code('T', 0).size() == 0);
+  CHECK(p.pf.with_code('M', 29).size() == 0);  // the M29 is the writer's, not a command that runs
+  CHECK(p.pf.with_code('G', 1).size() == 1);
+  CHECK(p.pf.errors.empty());  // the upload's HTML is not G-code
+  // Without any of them, nothing is written (and the common path is untouched).
+  CHECK(parse_text("G28\nM98 P\"x.g\"\n").pf.written_lines.empty());
+}

@@ -183,12 +183,21 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   const std::vector<uint32_t>& acts = acting_commands(u);
   const auto& blocks = pf.block_commands;
   auto block = blocks.begin();
-  uint32_t ci = 0;                       // the next command to push
+  uint32_t ci = 0;  // the next command to push
+  // Lines written into a file (M28 … M29) do not run: they are skipped like the space between two runs.
+  auto written = pf.written_commands.begin();
   auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
     while (ci < end) {
+      while (written != pf.written_commands.end() && written->second <= ci) ++written;
+      const bool skip = written != pf.written_commands.end() && written->first <= ci;
+      if (skip) {
+        ci = std::min(end, written->second);
+        continue;
+      }
       while (block != blocks.end() && block->second <= ci) ++block;
       const bool in = block != blocks.end() && block->first <= ci;
-      const uint32_t stop = std::min(end, in ? block->second : block != blocks.end() ? block->first : end);
+      uint32_t stop = std::min(end, in ? block->second : block != blocks.end() ? block->first : end);
+      if (written != pf.written_commands.end()) stop = std::min(stop, written->first);
       const size_t room = o_.max_nodes - std::min(o_.max_nodes, g_.nodes.size());
       const auto n = static_cast<uint32_t>(std::min<size_t>(stop - ci, room));
       g_.nodes.push_commands(Node{NodeKind::Command, call_kind, maybe || in, depth, u.index, ci, enter, kNoNode}, n);

@@ -228,5 +228,7 @@ class LineParser {
 // Blocks and the code index, after the lines are parsed (line_parser.cc, code_index.cc).
 void compute_blocks(ParsedFile& pf);
 void index_codes(ParsedFile& pf);
+/// Finds the lines written into a file (ParsedFile::written_lines); before index_codes and compute_blocks.
+void mark_written(ParsedFile& pf);
 
 }  // namespace rrflint

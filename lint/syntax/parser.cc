@@ -37,6 +37,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
   trace::mark("parse: lines");
+  mark_written(pf);
   // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
   run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) {
     const trace::Scope time(k == 0 ? "blocks" : "code index");

@@ -220,6 +220,12 @@ struct ParsedFile {
     bool off = false;  // ParseOptions::no_prefilters: everything above holds everything
   };
   Prefilters prefilters;
+  /// Lines RRF writes into a file instead of running them: after `M28 name` up to and including its `M29` (to the
+  /// end of the file without one), and after `M559`/`M560` up to and including the line with `<!-- **EoF** -->`.
+  /// `written_lines` are [begin, end) line ranges in order; `written_commands` the same stretches as command index
+  /// ranges. Their commands stay in `commands` (lexical rules read them as text), but no code index lists them
+  /// (with_code, used_codes, unlisted_codes) and the boot graph does not run them.
+  std::vector<std::pair<uint32_t, uint32_t>> written_lines, written_commands;
   uint64_t serial = 0;  // unique per parse (keys find()'s cache)
   /// The commands with this letter and number (any fraction), in file order, as indices into `commands`. For
   /// 'T' every T command, whatever its number. Numbers outside 0…1023 have no list: filter `commands` for them.
@@ -246,6 +252,7 @@ struct ParsedFile {
  private:
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
+  friend void mark_written(ParsedFile&);
   CodeCommands run(size_t j) const;  // the commands of code_keys_[j]
   CodeCommands of_key(uint16_t key) const;
   // Every command's index, sorted by code key (then file order). Keys: G0…G1023, M0…M1023, T, then the commands of

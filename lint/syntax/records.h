@@ -183,6 +183,7 @@ class CommandTable {
   friend struct ParsedFile;
   friend ParsedFile parse(const SourceFile&, const ParseOptions&);
   friend void index_codes(ParsedFile&);
+  friend void mark_written(ParsedFile&);
   friend class CodeCommands;
   void add(const Command& c);
   /// Appends the commands of a later part of the file (a parse in parts); `part` is left empty.
