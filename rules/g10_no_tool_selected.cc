@@ -16,8 +16,9 @@ constexpr RuleMeta kMeta{
 ## What it does
 Reports a `G10` in tool form (`L1`, or no `L` with `R`, `S` or a visible axis letter) and an `M568` (RRF 3.3+)
 that have no `P`, where the machine model says no tool is selected: in config.g and the files it runs before
-any `T` command. Without `P` both commands address the current tool. Standalone macros are not checked: when
-they run, the user may have selected a tool.
+any `T` command, and in `tpre<n>.g`, where no tool is selected (the old one is already deselected, tool n not
+yet). Without `P` both commands address the current tool. Other macros run after boot are not checked: when
+they run, the user may have selected a tool; in `tfree<n>.g` and `tpost<n>.g` tool n is the current one.
 
 On RRF 3.3 `M568` requires `P` whether a tool is selected or not; the rule reports that too.
 
@@ -53,7 +54,10 @@ std::string no_tool_reply(Version fw) {
 }
 
 void check(const NodeContext& cx, Sink& out) {
-  if (!cx.is_command() || !cx.certain() || !cx.in_boot()) return;
+  if (!cx.is_command() || !cx.certain()) return;
+  // At boot, and in a tpre<n>.g run after it, where no tool is ever selected.
+  const bool tpre = file_role(cx.unit().sd_path) == FileRole::ToolPre;
+  if (!cx.in_boot() && !tpre) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
@@ -71,10 +75,12 @@ void check(const NodeContext& cx, Sink& out) {
     return;
   }
   if (!s.current_tool_known || s.current_tool >= 0 || s.unknown_baseline) return;
-  out.report(kMeta, cx.at(c.span),
-             fmt::format("{} has no 'P' and no tool is selected at this point of the boot sequence: RRF answers "
-                         "'{}' and sets nothing",
-                         tools::quote(pf, c), no_tool_reply(fw)));
+  out.report(
+      kMeta, cx.at(c.span),
+      fmt::format("{} has no 'P' and no tool is selected {}: RRF answers '{}' and sets nothing", tools::quote(pf, c),
+                  tpre ? "inside a tpre macro (the old tool is deselected, the new one not yet selected)"
+                       : "at this point of the boot sequence",
+                  no_tool_reply(fw)));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "lint/boot/commands.h"
 #include "lint/boot/model_commands.h"
 
 namespace rrflint {
@@ -78,6 +79,7 @@ void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
         s.running_m501 = true;
         s.m501 = n.call_site;
       }
+      enter_tool_macro(s, n, e);
       return;
     case NodeKind::Leave:
       if (n.call == CallKind::M501) s.running_m501 = false;
@@ -107,6 +109,33 @@ void ModelBuilder::step(MachineState& s, NodeId id, const Node& n) const {
     }
     case NodeKind::Command: apply_command(s, id, n); return;
   }
+}
+
+// A tool-change macro runs only when its tool exists: inside tpre<n>.g no tool is current (the old one is
+// deselected, n not yet selected); inside tfree<n>.g and tpost<n>.g tool n is. A call from a T at boot knows the
+// tool from the T; a macro linted after boot (an entry) takes it from its name, and when the boot did not certainly
+// create tool n, the tools are unknown (it exists whenever the macro runs).
+void ModelBuilder::enter_tool_macro(MachineState& s, const Node& n, Runs e) const {
+  if (n.call == CallKind::ToolPre) {
+    s.current_tool = kNoTool;
+    s.current_tool_known = e == Runs::Yes;
+    s.current_tool_set = n.call_site;
+    return;
+  }
+  if (n.call != CallKind::Entry) return;
+  int t = -1;
+  const FileRole role = file_role(m_.unit(n.unit).sd_path, &t);
+  if (!is_tool_change_role(role)) return;
+  const Tool* tool = t >= 0 ? s.tool(t) : nullptr;
+  if (!tool || tool->maybe) {
+    if (t >= 0) s.tools_known = false;
+    s.current_tool_known = false;
+    s.current_tool_set = kNoNode;
+    return;
+  }
+  s.current_tool = role == FileRole::ToolPre ? kNoTool : t;
+  s.current_tool_known = true;
+  s.current_tool_set = kNoNode;
 }
 
 void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) const {

@@ -185,6 +185,7 @@ class ModelBuilder {
 
  private:
   void apply_command(MachineState& s, NodeId id, const Node& n) const;
+  void enter_tool_macro(MachineState& s, const Node& n, Runs e) const;
   const Machine& m_;
   const Graph& g_;
   Version fw_;
