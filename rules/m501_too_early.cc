@@ -33,7 +33,8 @@ is ignored, and a note at each later command that creates what the line needed:
 
 It stays silent when the card has no config-override.g, on unknown values (`{…}`) in either command, when the
 later creation is inside an `if` or a loop (it may not run), for an M501 in an `if`, in a tool-change macro, and
-for a line whose heater, tool or axis nothing creates (a file saved by an older config). The override's own lines
+for a line whose heater, tool or axis nothing creates (a file saved by an older config). The file loaded with
+`M98` instead is [override-via-m98](override-via-m98.md)'s finding. The override's own lines
 are judged only here: heater-before-creation (RRF205), g10-tool-before-definition (RRF301) and
 axis-before-creation (RRF201) leave them to this rule.
 

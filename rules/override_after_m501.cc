@@ -37,7 +37,8 @@ It stays silent when the later command sets the same value (`G10 L2 P1 X0` after
 values (`{…}`), for a command in an `if` or a loop, for an M501 in an `if` (what it loads is then not known),
 for a value the file set but that an earlier command after the M501 already replaced (that one is reported), for
 lines of the override that failed (a tool or heater created only after the M501: see
-[m501-too-early](m501-too-early.md)), in tool-change macros, and in macros run after boot. Setting the values
+[m501-too-early](m501-too-early.md)), in tool-change macros, in macros run after boot, and after an `M98 P"config-override.g"` (that is
+[override-via-m98](override-via-m98.md)'s finding). Setting the values
 *before* the M501 (`G10 P0 X0 Y0 Z0` then `M501`) is the right order and is not reported.
 
 ## Why is this bad?
