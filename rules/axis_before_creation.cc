@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "rules/tool_helpers.h"
 
 namespace rrflint {
 namespace {
@@ -16,7 +17,8 @@ constexpr RuleMeta kMeta{
 Reports an axis letter other than X, Y and Z in `M92`, `M201`, `M203`, `M205`, `M206`, `M208`, `M350`, `M566`,
 `M574`, `M906`, `M913`, `M915`, `M917` or `G31` at a point where no axis with that letter exists yet. A note points
 at the later `M584` that creates the axis, if there is one. Hidden axes (`M584 P`) are accepted by these commands,
-so they are not findings here.
+so they are not findings here. An `M208` or `G31` line of config-override.g that the M501 runs before a later
+`M584` creates the axis is a note of [m501-too-early](m501-too-early.md)'s finding instead.
 
 `G31 C` gets its own message: up to RRF 3.2 `C` was the probe's temperature coefficient; from 3.3 it is the C axis
 offset (the coefficient is `T`).
@@ -111,6 +113,9 @@ void check(const NodeContext& cx, Sink& out) {
     }
     const NodeId later = later_creation(cx, L);
     std::string_view code = pf.text(c.word);
+    if (later != kNoNode && (c.is('M', 208) || c.is('G', 31)) && !cx.graph.nodes[later].maybe &&
+        tools::inside_m501(cx.graph, cx.id))
+      continue;  // a line M500 wrote, run by an M501 before the M584: a note of m501-too-early's finding
     if (later != kNoNode) {
       out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,

@@ -19,7 +19,8 @@ sequence.
 
 It stays silent when the tool may exist: tools created with an expression for the number (`M563 P{param.T}` in
 a macro called as `M98 P"mktool.g" T0`) or inside an `if`, a G10 inside an `if`/`while`, and a G10 in the tool's
-own tool-change macros (`tpost<n>.g` only runs for a tool that exists). In a macro that runs after boot it also
+own tool-change macros (`tpost<n>.g` only runs for a tool that exists). A line of config-override.g that the
+M501 runs before a later M563 creates the tool is a note of [m501-too-early](m501-too-early.md)'s finding instead. In a macro that runs after boot it also
 stays silent when any M563 on the card could create the tool, since a macro may do that at run time. When the
 tool's M563 itself failed
 (`bad drive number`), this rule stays silent and `extruder-before-creation` reports the cause.
@@ -85,6 +86,8 @@ void check(const NodeContext& cx, Sink& out) {
   if (!cx.in_boot() && any_m563_could_create(cx.machine, n)) return;  // a macro may create it at run time
 
   const NodeId later = tools::later_m563(cx, n);
+  // A line of config-override.g run before the M563: a note of m501-too-early's finding at the M501.
+  if (later != kNoNode && !cx.graph.nodes[later].maybe && tools::inside_m501(cx.graph, cx.id)) return;
   const std::string what = tools::quote(pf, c);
   const std::string answer = tools::invalid_tool_text(s.firmware, n);
   std::string msg =
