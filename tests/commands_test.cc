@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include "lint/boot/commands.h"
+#include "lint/boot/const_eval.h"
 #include "lint/engine/linter.h"
 #include "rules/registry.h"
 
@@ -176,4 +177,33 @@ TEST_CASE("commands: M585 probes the first visible axis it names", "[commands]")
   CHECK(m585_axis(u->pf, u->c(), s) == 0);  // X: creation order, not parameter order; U is hidden
   auto none = cmd("M585 U0 S1");
   CHECK(m585_axis(none->pf, none->c(), s) == -1);
+}
+
+TEST_CASE("const_eval: values known at boot", "[commands]") {
+  std::map<std::string, ConstValue> globals{{"dir", ConstValue::string("0:/macros/")},
+                                            {"on", ConstValue::boolean(true)}};
+  const ConstEnv env{"0:/sys/", &globals, nullptr};
+  auto str = [&](std::string_view e) {
+    const ConstValue v = const_eval(e, env);
+    return v.kind == ConstValue::Kind::String ? v.str : std::string("?");
+  };
+  CHECK(str("directories.system^\"/tool_params.g\"") == "0:/sys//tool_params.g");
+  CHECK(str("global.dir ^ \"park.g\"") == "0:/macros/park.g");
+  CHECK(str("\"a\"\"b\"") == "a\"b");
+  CHECK(str("(\"a\" ^ \"b\") ^ \"c\"") == "abc");
+  auto truth = [&](std::string_view e) {
+    const ConstValue v = const_eval(e, env);
+    return v.kind == ConstValue::Kind::Bool ? (v.b ? 1 : 0) : -1;
+  };
+  CHECK(truth("directories.system == \"0:/sys/\"") == 1);
+  CHECK(truth("global.on && !false") == 1);
+  CHECK(truth("1 != 1 || global.on") == 1);
+  CHECK(truth("\"a\" == 1") == -1);  // different kinds: not a constant here
+  // Unknown: other names, object model fields, functions, arrays, other operators.
+  CHECK(str("global.missing ^ \"x\"") == "?");
+  CHECK(str("move.axes[0].letter") == "?");
+  CHECK(str("exists(global.dir)") == "?");
+  CHECK(truth("1 < 2") == -1);
+  CHECK(str("\"unterminated") == "?");
+  CHECK(str("var.x") == "?");
 }

@@ -211,7 +211,7 @@ TEST_CASE("model: expressions and if-branches make facts unknown", "[model]") {
   CHECK_FALSE(p->end().tools_known);
   CHECK_FALSE(p->end().tool_certainly_absent(3));
   // A macro whose name is an expression may do anything.
-  auto m = config("M98 P{\"x\" ^ \".g\"}\n");
+  auto m = config("M98 P{move.axes[0].letter ^ \".g\"}\n");
   CHECK_FALSE(m->end().tools_known);
   CHECK_FALSE(m->end().axes_known);
   // A T{expr} leaves the current tool unknown.
@@ -373,7 +373,7 @@ TEST_CASE("model: a G10 whose form is unknown sets nothing certain, and no rule 
   auto r = config(
       "M563 P0 S\"a\"\n"
       "T0 P0\n"
-      "M98 P{\"x\" ^ \".g\"}\n"
+      "M98 P{move.axes[0].letter ^ \".g\"}\n"
       "G10 X1 Z0\n"
       "G10 L{global.l} Z2\n");
   CHECK_FALSE(r->end().axes_known);
@@ -385,7 +385,7 @@ TEST_CASE("model: a G10 whose form is unknown sets nothing certain, and no rule 
   // The same lines lint silently: no G10 rule fires on a G10 of unknown form.
   SourceManager sources;
   MemoryReader reader;
-  reader.add("/sys/config.g", "M563 P0 S\"a\"\nT0 P0\nM98 P{\"x\" ^ \".g\"}\nG10 X1 U3\nG10 U3\n");
+  reader.add("/sys/config.g", "M563 P0 S\"a\"\nT0 P0\nM98 P{move.axes[0].letter ^ \".g\"}\nG10 X1 U3\nG10 U3\n");
   LintOptions o;
   o.select = {"ALL"};
   const MachineResult res = lint_machine(sources, reader, builtin_rules(), o);
@@ -393,4 +393,14 @@ TEST_CASE("model: a G10 whose form is unknown sets nothing certain, and no rule 
     INFO(d.message);
     CHECK(std::string(d.name).rfind("g10-", 0) != 0);
   }
+}
+
+TEST_CASE("model: an M98 whose path is known at boot is followed, and what it creates is known", "[model]") {
+  auto r = boot({{"/sys/config.g", "M584 X0 Y1 Z2 E3\nM98 P{directories.system^\"/tools.g\"}\n"},
+                 {"/sys/tools.g", "M563 P0 D0\n"}});
+  CHECK(r->end().tools_known);
+  CHECK(r->end().tools.count(0) == 1);
+  // An object model value is not known at boot: anything may exist afterwards.
+  auto u = boot({{"/sys/config.g", "M584 X0 Y1 Z2 E3\nM98 P{move.axes[0].letter^\".g\"}\n"}});
+  CHECK_FALSE(u->end().tools_known);
 }

@@ -1,5 +1,9 @@
 #include "lint/boot/graph.h"
 
+#include <map>
+
+#include "lint/boot/const_eval.h"
+
 #include <algorithm>
 #include <set>
 #include <unordered_map>
@@ -84,7 +88,67 @@ class Builder {
   int current_tool_ = kNoTool;   // or kUnknownTool
   std::unordered_map<uint64_t, std::optional<std::string>> m98_paths_;  // (unit, command) -> M98 P, if known
   std::unordered_map<uint32_t, std::vector<uint32_t>> acting_;          // unit -> acting_commands
+  // Values known at boot: globals set to constants so far on the boot path (a name set in an `if`, or to
+  // anything else, is absent: unknown).
+  std::map<std::string, ConstValue> globals_;
+  struct FileValues;  // the `var`s of one file run, and which assignment lines it has applied
+  /// The file's global/var/set lines, in order; found once a file.
+  const std::vector<uint32_t>& assignment_lines(const FileUnit& u);
+  std::unordered_map<uint32_t, std::vector<uint32_t>> assignments_;  // unit -> assignment_lines
+  void assign_until(const FileUnit& u, FileValues& fv, uint32_t line);
+  std::optional<std::string> evaluated_path(const FileUnit& u, const Command& c, FileValues& fv, uint32_t line);
 };
+
+struct Builder::FileValues {
+  const std::vector<uint32_t>& lines;  // the file's global/var/set lines, in order
+  size_t next = 0;
+  std::map<std::string, ConstValue> vars;
+};
+
+const std::vector<uint32_t>& Builder::assignment_lines(const FileUnit& u) {
+  auto [it, fresh] = assignments_.try_emplace(u.index);
+  if (fresh) {
+    const LineTable& lines = u.parsed.lines;
+    for (uint32_t li = 0; li < lines.size(); ++li)
+      if (lines.kind(li) == LineKind::Meta) {
+        const MetaKind k = lines[li].meta;
+        if (k == MetaKind::Global || k == MetaKind::Var || k == MetaKind::Set) it->second.push_back(li);
+      }
+  }
+  return it->second;
+}
+
+// Applies the file's assignments on lines before `line`: a constant value is known from there on, anything else
+// (or an assignment inside a block) makes the name unknown.
+void Builder::assign_until(const FileUnit& u, FileValues& fv, uint32_t line) {
+  const ParsedFile& pf = u.parsed;
+  for (; fv.next < fv.lines.size() && fv.lines[fv.next] < line; ++fv.next) {
+    const Line l = pf.lines[fv.lines[fv.next]];
+    std::string_view name = pf.text(l.meta_name);
+    std::map<std::string, ConstValue>* scope = &fv.vars;
+    if (l.meta == MetaKind::Global || (l.meta == MetaKind::Set && name.starts_with("global."))) scope = &globals_;
+    if (l.meta == MetaKind::Set) name.remove_prefix(name.find('.') + 1);  // "global.x" / "var.x": the parser checked
+    // An element (`set global.a[1] = …`), a value set in a block, or anything not constant: unknown from here.
+    const bool element = pf.text(Span{l.meta_name.end, l.meta_arg.begin}).find('[') != std::string_view::npos;
+    const ConstEnv env{"0:" + sys_dir_ + "/", &globals_, &fv.vars};
+    const ConstValue v = element || l.conditional || l.in_loop ? ConstValue{} : const_eval(pf.text(l.meta_arg), env);
+    if (v.known()) (*scope)[std::string(name)] = v;
+    else scope->erase(std::string(name));
+  }
+}
+
+// The path of `M98 P{…}` when its expression is known at boot.
+std::optional<std::string> Builder::evaluated_path(const FileUnit& u, const Command& c, FileValues& fv, uint32_t line) {
+  const ParsedFile& pf = u.parsed;
+  const ParamRef P = pf.find(c, 'P');
+  if (!P || P->kind != ValueKind::Expression) return std::nullopt;
+  std::string_view e = pf.text(P->value);
+  if (e.size() < 2 || e.front() != '{' || e.back() != '}') return std::nullopt;
+  assign_until(u, fv, line);
+  const ConstValue v = const_eval(e.substr(1, e.size() - 2), ConstEnv{"0:" + sys_dir_ + "/", &globals_, &fv.vars});
+  if (v.kind != ConstValue::Kind::String) return std::nullopt;
+  return v.str;
+}
 
 void Builder::call(const std::string& name, CallKind kind, NodeId site, bool maybe, uint16_t depth, bool report_missing,
                    uint32_t tool) {
@@ -209,6 +273,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     }
     return true;
   };
+  FileValues fv{assignment_lines(u)};
   for (const uint32_t a : acts) {
     if (!push_until(a) || full()) break;
     const CommandTable::Code code = pf.commands.code(a);
@@ -224,7 +289,12 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
         auto p = get_string(pf, pf.commands[a], 'P');
         if (p.known()) it->second = std::move(p.value);
       }
-      if (it->second) call(*it->second, CallKind::M98, id, m, depth, true);
+      if (it->second) {
+        call(*it->second, CallKind::M98, id, m, depth, true);
+      } else if (auto path = evaluated_path(u, pf.commands[a], fv, code.line)) {
+        g_.evaluated_calls.push_back(id);
+        call(*path, CallKind::M98, id, m, depth, true);
+      }
     } else if (code.number == 501) {
       call("config-override.g", CallKind::M501, id, m, depth, true);
     } else {  // M505
@@ -235,6 +305,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     }
   }
   if (!g_.truncated && !full()) push_until(static_cast<uint32_t>(pf.commands.size()));
+  assign_until(u, fv, static_cast<uint32_t>(pf.lines.size()));  // the file's globals hold for what runs next
   stack_.pop_back();
   push(Node{NodeKind::Leave, call_kind, maybe, depth, u.index, tool, enter, call_site});
 }

@@ -158,6 +158,10 @@ struct Graph {
   std::vector<Segment> segments;
   std::vector<GraphEvent> events;
   bool truncated = false;  // stopped at the node limit
+  /// The M98 nodes whose path is an expression known at boot (lint/boot/const_eval.h), in order: the graph
+  /// followed them, so the model need not take them as "anything may happen".
+  std::vector<NodeId> evaluated_calls;
+  bool evaluated(NodeId id) const { return std::binary_search(evaluated_calls.begin(), evaluated_calls.end(), id); }
 };
 
 struct GraphOptions {

@@ -141,7 +141,9 @@ void ModelBuilder::enter_tool_macro(MachineState& s, const Node& n, Runs e) cons
 void ModelBuilder::apply_command(MachineState& s, NodeId id, const Node& n) const {
   const FileUnit& u = m_.unit(n.unit);
   // Most commands change nothing here (moves, settings): their code is read from the record alone.
-  if (!changes_state(u.parsed.commands.code(n.index))) return;
+  const CommandTable::Code code = u.parsed.commands.code(n.index);
+  if (!changes_state(code)) return;
+  if (code.is('M', 98) && g_.evaluated(id)) return;  // the graph followed it: its effects are the file's own
   interpret_command(s, u.parsed, u.parsed.commands[n.index], id, exec_[id] == Runs::Maybe);
 }
 
