@@ -50,6 +50,13 @@ inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& un
   });
 }
 
+/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
+inline bool runs_again(const NodeContext& cx, NodeId from) {
+  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    return n.kind == NodeKind::Command && n.unit == cx.self.unit && n.index == cx.self.index;
+  }) != kNoNode;
+}
+
 /// Does this M308 create sensor n (S n with a Y type; an unknown S may be n)? Without Y it configures an existing one.
 inline bool creates_sensor(const ParsedFile& pf, const Command& c, int n, bool& unknown) {
   auto S = get_int(pf, c, 'S');

@@ -282,10 +282,12 @@ TEST_CASE("model: tool heaters get a monitor only if they exist when M563 names 
 }
 
 TEST_CASE("model: fans, probes and machine mode", "[model]") {
-  auto r = config("M950 F2 C\"out4\"\nM558 P8 C\"io3.in\" H5 F120\nM558 K1 P5 C\"io4.in\"\nM453\nM669 K1\n");
+  auto r = config(
+      "M950 F2 C\"out4\"\nM558 P8 C\"io3.in\" H5 F120\nM558 K1 P5 C\"io4.in\"\nM558 K3 C\"io5.in\"\nM453\nM669 K1\n");
   CHECK(r->end().fans.count(2) == 1);
   CHECK(r->end().probes.at(0).type == 8);
   CHECK(r->end().probes.at(1).type == 5);
+  CHECK(r->end().probes.count(3) == 0);  // C without P: "Missing Z probe type number"
   CHECK(r->end().mode == MachineMode::CNC);
   CHECK(r->end().kinematics == 1);
 }

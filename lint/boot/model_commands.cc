@@ -366,7 +366,7 @@ void do_m143(Cx& x) {
 }
 
 void do_m558(Cx& x) {
-  if (!x.pf.find(x.c, 'P') && !x.pf.find(x.c, 'C')) return;
+  if (!x.pf.find(x.c, 'P')) return;  // C without P: "Missing Z probe type number" (EndstopsManager.cpp)
   auto K = get_int(x.pf, x.c, 'K');
   int k = K.known() ? static_cast<int>(K.value) : (K.absent() ? 0 : -1);
   if (k < 0) {
