@@ -57,6 +57,23 @@ inline bool runs_again(const NodeContext& cx, NodeId from) {
   }) != kNoNode;
 }
 
+/// Calls f(id, node) for each node that ran after node `from` and before this one: in this segment, or, for a
+/// macro run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.
+template <class F>
+void each_since(const NodeContext& cx, NodeId from, F f) {
+  const Segment& here = cx.segment();
+  auto walk = [&](NodeId b, NodeId e) {
+    cx.graph.nodes.find_if(b, e, [&](NodeId id, const Node& n) {
+      f(id, n);
+      return false;
+    });
+  };
+  if (from >= here.begin) return walk(from + 1, cx.id);
+  for (const Segment& sg : cx.graph.segments)
+    if (from >= sg.begin && from < sg.end) walk(from + 1, sg.end);
+  walk(here.begin, cx.id);
+}
+
 /// Does this M308 create sensor n (S n with a Y type; an unknown S may be n)? Without Y it configures an existing one.
 inline bool creates_sensor(const ParsedFile& pf, const Command& c, int n, bool& unknown) {
   auto S = get_int(pf, c, 'S');

@@ -73,17 +73,18 @@ bool g31_sets(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
-/// The last G31 in [from, to) that sets probe k (or may: K{…}); kNoNode if none.
-NodeId last_g31(const NodeContext& cx, NodeId from, NodeId to, int k) {
-  NodeId last = kNoNode;
-  cx.graph.nodes.find_if(from, to, [&](NodeId id, const Node& n) {
-    const tools::NodeCommand nc = tools::command_at(cx.machine, n);
-    if (!nc.is('G', 31) || !g31_sets(*nc.pf, *nc.c)) return false;
-    const heat::DeviceRef r = probe_named(*nc.pf, *nc.c);
-    if (!r.known || r.number == k) last = id;
-    return false;
-  });
-  return last;
+/// Does this node's G31 set probe k (or may it: K{…})?
+bool g31_for(const NodeContext& cx, const Node& n, int k) {
+  const tools::NodeCommand nc = tools::command_at(cx.machine, n);
+  if (!nc.is('G', 31) || !g31_sets(*nc.pf, *nc.c)) return false;
+  const heat::DeviceRef r = probe_named(*nc.pf, *nc.c);
+  return !r.known || r.number == k;
+}
+
+/// Is probe k set by a G31 after node `from` in this segment?
+bool g31_later(const NodeContext& cx, NodeId from, int k) {
+  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) { return g31_for(cx, n, k); }) !=
+         kNoNode;
 }
 
 void check_g31(const NodeContext& cx, Sink& out) {
@@ -103,7 +104,7 @@ void check_g31(const NodeContext& cx, Sink& out) {
   if (unknown || (create != kNoNode && heat::runs_again(cx, create))) return;  // set once the probe exists
   const std::string where = create == kNoNode ? fmt::format("no 'M558 K{} P…' creates it anywhere", k.number)
                                               : "the M558 that creates it comes only later";
-  const bool later = create != kNoNode && last_g31(cx, create + 1, cx.segment().end, k.number) != kNoNode;
+  const bool later = create != kNoNode && g31_later(cx, create, k.number);
   Report rep = out.report(
       kMeta, cx.at(c.span),
       fmt::format("{} names Z probe {}, which does not exist yet ({}): RRF answers '{} Z probe index' and sets "
@@ -123,8 +124,11 @@ void check_m558(const NodeContext& cx, Sink& out) {
   if (!k.known) return;
   auto it = s.probes.find(k.number);
   if (it == s.probes.end() || it->second.maybe || it->second.created == kNoNode) return;
-  const NodeId g31 = last_g31(cx, it->second.created + 1, cx.id, k.number);
-  if (g31 == kNoNode || last_g31(cx, cx.id + 1, cx.segment().end, k.number) != kNoNode) return;  // set again after
+  NodeId g31 = kNoNode;  // the last G31 that set the probe since its creation
+  heat::each_since(cx, it->second.created, [&](NodeId id, const Node& n) {
+    if (g31_for(cx, n, k.number)) g31 = id;
+  });
+  if (g31 == kNoNode || g31_later(cx, cx.id, k.number)) return;  // set again after
   Report rep = out.report(kMeta, Severity::Warning, cx.at(c.span),
                           fmt::format("{} re-creates Z probe {} (P deletes it and makes a new one with the defaults), "
                                       "so the trigger height and offsets the earlier G31 set are lost: put the G31 "
