@@ -292,6 +292,15 @@ TEST_CASE("model: fans, probes and machine mode", "[model]") {
   CHECK(r->end().kinematics == 1);
 }
 
+TEST_CASE("model: kinematics type from M669 K, M667 S (up to 3.4) and M665 L/D", "[model]") {
+  CHECK(config("M669 K1\nM667 S2\n", Version(3, 4, 6))->end().kinematics == 2);
+  CHECK(config("M669 K1\nM667 S2\n", Version(3, 5, 0))->end().kinematics == 1);  // M667 is no longer supported
+  CHECK(config("M669 K1\nM669 S40\nM665 R100\n")->end().kinematics == 1);        // no K, no L/D: no change
+  CHECK(config("M665 L360 R180 H400\n")->end().kinematics == 3);
+  CHECK(!config("M669 K{global.k}\n")->end().kinematics_known);
+  CHECK(!config("if exists(global.k)\n  M669 K1\n")->end().kinematics_known);
+}
+
 // Firmware inference (issue: core §4): the newest version consistent with the evidence.
 TEST_CASE("infer: the version comes from the header, the syntax, or the newest release", "[model][infer]") {
   auto target = [](std::string text) { return config(std::move(text), std::nullopt)->result.target; };
