@@ -1,6 +1,6 @@
-// Helpers shared by the heater, sensor and fan order rules (RRF205–RRF208, RRF211): which heater or fan a command
-// names, and the later M950 that creates it. What each command means (its default heater, which letter names the
-// device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
+// Helpers shared by the device order rules (RRF205–RRF211): which heater, fan or probe a command names, the later
+// M950/M308 that creates a device, and the nodes run since a creation. What each command means (its default heater,
+// which letter names the device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
 #pragma once
 
 #include <algorithm>
