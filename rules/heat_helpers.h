@@ -1,6 +1,6 @@
-// Helpers shared by the heater, sensor and fan order rules (RRF205, RRF206, RRF208): which heater or fan a command
-// names, and the later M950 that creates it. What each command means (its default heater, which letter names the
-// device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
+// Helpers shared by the device order rules (RRF205–RRF211): which heater, fan or probe a command names, the later
+// M950/M308 that creates a device, and the nodes run since a creation. What each command means (its default heater,
+// which letter names the device) follows docs/firmware-behaviour.md#heaters-and-their-monitors.
 #pragma once
 
 #include <algorithm>
@@ -48,6 +48,56 @@ inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& un
     if (v.unknown()) unknown = true;
     return unknown || (v.known() && v.value == n && k.pf->find(*k.c, 'C'));
   });
+}
+
+/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
+inline bool runs_again(const NodeContext& cx, NodeId from) {
+  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    return n.kind == NodeKind::Command && n.unit == cx.self.unit && n.index == cx.self.index;
+  }) != kNoNode;
+}
+
+/// Calls f(id, node) for each node that ran after node `from` and before this one: in this segment, or, for a
+/// macro run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.
+template <class F>
+void each_since(const NodeContext& cx, NodeId from, F f) {
+  const Segment& here = cx.segment();
+  auto walk = [&](NodeId b, NodeId e) {
+    cx.graph.nodes.find_if(b, e, [&](NodeId id, const Node& n) {
+      f(id, n);
+      return false;
+    });
+  };
+  if (from >= here.begin) return walk(from + 1, cx.id);
+  for (const Segment& sg : cx.graph.segments)
+    if (from >= sg.begin && from < sg.end) walk(from + 1, sg.end);
+  walk(here.begin, cx.id);
+}
+
+/// Does this M308 create sensor n (S n with a Y type; an unknown S may be n)? Without Y it configures an existing one.
+inline bool creates_sensor(const ParsedFile& pf, const Command& c, int n, bool& unknown) {
+  auto S = get_int(pf, c, 'S');
+  if (S.unknown()) unknown = true;
+  return unknown || (S.known() && S.value == n && pf.find(c, 'Y'));
+}
+
+/// The later `M308 S<n> Y…` in this segment that creates sensor n; kNoNode if none. `unknown` as for
+/// later_creation.
+inline NodeId later_sensor(const NodeContext& cx, int n, bool& unknown) {
+  unknown = false;
+  return tools::find_later(cx, 'M', 308,
+                           [&](const tools::NodeCommand& k) { return creates_sensor(*k.pf, *k.c, n, unknown); });
+}
+
+/// Does any M308 on the card create sensor n (or may it)? A macro run after boot may create it.
+inline bool any_m308_creates(const Machine& m, int n) {
+  bool unknown = false;
+  for (uint32_t i = 0; i < m.unit_count(); ++i) {
+    const ParsedFile& pf = m.unit(i).parsed;
+    for (const uint32_t j : pf.with_code('M', 308))
+      if (creates_sensor(pf, pf.commands[j], n, unknown)) return true;
+  }
+  return false;
 }
 
 }  // namespace rrflint::heat

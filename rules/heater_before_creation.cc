@@ -64,13 +64,6 @@ bool set_later(const NodeContext& cx, NodeId from, int number, int h) {
   }) != kNoNode;
 }
 
-/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
-bool runs_again(const NodeContext& cx, NodeId from) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    return n.kind == NodeKind::Command && n.unit == cx.self.unit && n.index == cx.self.index;
-  }) != kNoNode;
-}
-
 /// What the heater is left with once this command is rejected.
 std::string consequence(const NodeContext& cx, int code, int h, NodeId create) {
   const NodeId after = create == kNoNode ? cx.id : create;
@@ -102,7 +95,7 @@ void check(const NodeContext& cx, Sink& out) {
   bool unknown = false;
   const NodeId create = cx.in_boot() ? heat::later_creation(cx, 'H', r.number, unknown) : kNoNode;
   if (unknown) return;
-  if (create != kNoNode && runs_again(cx, create)) return;  // the same line runs again once the heater exists
+  if (create != kNoNode && heat::runs_again(cx, create)) return;  // the same line runs again once the heater exists
   const Val<double> A = c.number == 307 ? get_float(cx.parsed(), c, 'A') : Val<double>{};
   const bool disable = A.known() && A.value < 0;  // `M307 H7 A-1 C-1 D-1`: RRF 2's way to free a heater's pin
   const std::string error = c.number == 143 ? "does not exist" : "not found";

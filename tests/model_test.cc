@@ -282,12 +282,23 @@ TEST_CASE("model: tool heaters get a monitor only if they exist when M563 names 
 }
 
 TEST_CASE("model: fans, probes and machine mode", "[model]") {
-  auto r = config("M950 F2 C\"out4\"\nM558 P8 C\"io3.in\" H5 F120\nM558 K1 P5 C\"io4.in\"\nM453\nM669 K1\n");
+  auto r = config(
+      "M950 F2 C\"out4\"\nM558 P8 C\"io3.in\" H5 F120\nM558 K1 P5 C\"io4.in\"\nM558 K3 C\"io5.in\"\nM453\nM669 K1\n");
   CHECK(r->end().fans.count(2) == 1);
   CHECK(r->end().probes.at(0).type == 8);
   CHECK(r->end().probes.at(1).type == 5);
+  CHECK(r->end().probes.count(3) == 0);  // C without P: "Missing Z probe type number"
   CHECK(r->end().mode == MachineMode::CNC);
   CHECK(r->end().kinematics == 1);
+}
+
+TEST_CASE("model: kinematics type from M669 K, M667 S (up to 3.4) and M665 L/D", "[model]") {
+  CHECK(config("M669 K1\nM667 S2\n", Version(3, 4, 6))->end().kinematics == 2);
+  CHECK(config("M669 K1\nM667 S2\n", Version(3, 5, 0))->end().kinematics == 1);  // M667 is no longer supported
+  CHECK(config("M669 K1\nM669 S40\nM665 R100\n")->end().kinematics == 1);        // no K, no L/D: no change
+  CHECK(config("M665 L360 R180 H400\n")->end().kinematics == 3);
+  CHECK(!config("M669 K{global.k}\n")->end().kinematics_known);
+  CHECK(!config("if exists(global.k)\n  M669 K1\n")->end().kinematics_known);
 }
 
 // Firmware inference (issue: core §4): the newest version consistent with the evidence.

@@ -135,4 +135,18 @@ FileRole file_role(std::string_view sd_path, int* tool) {
   return FileRole::Other;
 }
 
+std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Version fw) {
+  if (c.number == 665) {
+    if (pf.find(c, 'L') || pf.find(c, 'D')) return 3;
+    return std::nullopt;
+  }
+  const char letter = c.number == 669 ? 'K' : 'S';
+  if (c.number == 667 && fw >= kRrf3_5) return std::nullopt;  // "M667 is no longer supported"
+  auto v = get_int(pf, c, letter);
+  if (v.absent()) return std::nullopt;
+  if (!v.known() || v.value < 0) return -1;
+  if (c.number == 667) return v.value == 1 || v.value == 2 ? static_cast<int>(v.value) : 0;
+  return static_cast<int>(v.value);
+}
+
 }  // namespace rrflint

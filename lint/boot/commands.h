@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -73,6 +74,11 @@ ToolRef addressed_tool(const ParsedFile& pf, const Command& c, const MachineStat
 /// The axis an M585 probes: the first visible axis it names (GCodes6.cpp `ProbeTool()`), as an axis index; -1 for
 /// none (`No axis specified`).
 int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
+
+/// The kinematics type after this M669 K, M667 S (up to 3.4: S0 Cartesian, S1 CoreXY, S2 CoreXZ) or M665 L/D
+/// (switches to linear delta, 3), as M669 K numbers it; nullopt when the command does not set it, -1 when the type
+/// is unknown (an expression). RRF replaces the kinematics object only when the type changes (Move::SetKinematics).
+std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Version fw);
 
 /// The role the firmware gives a file by its name (docs/firmware-behaviour.md#system-files).
 enum class FileRole : uint8_t {

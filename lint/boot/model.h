@@ -136,6 +136,7 @@ struct MachineState {
   bool running_m501 = false;
   int kinematics = 0;  // M669 K value (0 Cartesian)
   NodeId kinematics_set = kNoNode;
+  bool kinematics_known = true;  // false after an M669 K{…}, M667 S{…} or one inside a conditional block
   MachineMode mode = MachineMode::FFF;
   NodeId mode_set = kNoNode;
 

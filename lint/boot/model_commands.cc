@@ -366,7 +366,7 @@ void do_m143(Cx& x) {
 }
 
 void do_m558(Cx& x) {
-  if (!x.pf.find(x.c, 'P') && !x.pf.find(x.c, 'C')) return;
+  if (!x.pf.find(x.c, 'P')) return;  // C without P: "Missing Z probe type number" (EndstopsManager.cpp)
   auto K = get_int(x.pf, x.c, 'K');
   int k = K.known() ? static_cast<int>(K.value) : (K.absent() ? 0 : -1);
   if (k < 0) {
@@ -378,6 +378,15 @@ void do_m558(Cx& x) {
   p.maybe = x.maybe;
   if (auto P = get_int(x.pf, x.c, 'P'); P.known()) p.type = static_cast<int>(P.value);
   x.s.probes[k] = p;
+}
+
+void do_kinematics(Cx& x) {
+  MachineState& s = x.s;
+  const std::optional<int> k = kinematics_set_by(x.pf, x.c, s.firmware);
+  if (!k) return;
+  if (*k < 0 || x.maybe) s.kinematics_known = false;
+  else s.kinematics = *k;
+  s.kinematics_set = x.id;
 }
 
 // M585 measures the current tool's offset on the first visible axis it names (GCodes6.cpp `ProbeTool()`): the
@@ -438,11 +447,8 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
     case 452: s.mode = MachineMode::Laser, s.mode_set = id; break;
     case 453: s.mode = MachineMode::CNC, s.mode_set = id; break;
     case 669:
-    case 667: {
-      auto K = get_int(x.pf, x.c, 'K');
-      if (K.known()) s.kinematics = static_cast<int>(K.value), s.kinematics_set = id;
-      break;
-    }
+    case 667:
+    case 665: do_kinematics(x); break;
     default: break;
   }
 }
