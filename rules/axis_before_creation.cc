@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "rules/motion_helpers.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -18,7 +19,9 @@ Reports an axis letter other than X, Y and Z in `M92`, `M201`, `M203`, `M205`, `
 `M574`, `M906`, `M913`, `M915`, `M917` or `G31` at a point where no axis with that letter exists yet. A note points
 at the later `M584` that creates the axis, if there is one. Hidden axes (`M584 P`) are accepted by these commands,
 so they are not findings here. An `M208` or `G31` line of config-override.g that the M501 runs before a later
-`M584` creates the axis is a note of [m501-too-early](m501-too-early.md)'s finding instead.
+`M584` creates the axis is a note of [m501-too-early](m501-too-early.md)'s finding instead. When two or more
+earlier commands lose effect because of one `M584`, they are notes of
+[m584-after-dependents](m584-after-dependents.md)'s single finding at that `M584` instead.
 
 `G31 C` gets its own message: up to RRF 3.2 `C` was the probe's temperature coefficient; from 3.3 it is the C axis
 offset (the coefficient is `T`).
@@ -46,38 +49,6 @@ M92 X80 Y80 Z400 U80
 )md",
 };
 
-bool is_axis_command(const Command& c) {
-  if (c.fraction >= 0) return false;
-  if (c.letter == 'G') return c.number == 31;
-  if (c.letter != 'M') return false;
-  switch (c.number) {
-    case 92:
-    case 201:
-    case 203:
-    case 205:
-    case 206:
-    case 208:
-    case 350:
-    case 566:
-    case 574:
-    case 906:
-    case 913:
-    case 915:
-    case 917: return true;
-    default: return false;
-  }
-}
-
-// Letters that are parameters, not axes, of a given command.
-bool is_own_parameter(const Command& c, char letter) {
-  if (c.letter == 'G') return letter == 'P' || letter == 'S' || letter == 'T' || letter == 'K' || letter == 'H';
-  switch (c.number) {
-    case 915: return letter == 'S' || letter == 'F' || letter == 'H' || letter == 'T' || letter == 'R' || letter == 'P';
-    case 574: return letter == 'S' || letter == 'P';
-    default: return false;
-  }
-}
-
 NodeId later_creation(const NodeContext& cx, char letter) {
   return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
     if (n.kind != NodeKind::Command) return false;
@@ -90,17 +61,14 @@ NodeId later_creation(const NodeContext& cx, char letter) {
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is_command()) return;
   const Command& c = cx.command();
-  if (!is_axis_command(c)) return;
+  if (!motion::is_axis_command(c)) return;
   const MachineState& s = cx.state;
   if (!s.axes_known || s.unknown_baseline) return;
   const ParsedFile& pf = cx.parsed();
-  const std::string_view order = allowed_axis_letters();
   for (const Param& p : pf.params(c)) {
     const char L = p.letter;
-    if (L == 0 || L == 'X' || L == 'Y' || L == 'Z' || L == 'E' || order.find(L) == std::string_view::npos) continue;
-    if (is_own_parameter(c, L) || s.axis_index(L) >= 0) continue;
-    if (p.kind == ValueKind::String || p.kind == ValueKind::Text) continue;  // `C"nil"`: a pin, not an axis value
-    if (!pf.find(c, L).is(p)) continue;  // only the first of duplicate letters counts
+    // Not X/Y/Z/E, the command's own letters, a pin (`C"nil"`) or a duplicate letter; and the axis is missing.
+    if (!motion::is_axis_value(pf, c, p) || s.axis_index(L) >= 0) continue;
     const std::string axis = L >= 'a' ? fmt::format("'{}", L) : std::string(1, L);
     if (c.letter == 'G' && L == 'C') {
       const bool old = s.firmware < kRrf3_3;
@@ -116,6 +84,7 @@ void check(const NodeContext& cx, Sink& out) {
     if (later != kNoNode && (c.is('M', 208) || c.is('G', 31)) && !cx.graph.nodes[later].maybe &&
         tools::inside_m501(cx.graph, cx.id))
       continue;  // a line M500 wrote, run by an M501 before the M584: a note of m501-too-early's finding
+    if (motion::summarised(cx, later)) continue;  // a note of m584-after-dependents' finding at that M584
     if (later != kNoNode) {
       out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,

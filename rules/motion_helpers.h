@@ -1,0 +1,280 @@
+// Helpers shared by the axis and drive-mapping rules (RRF201, RRF203, RRF213): which commands set per-axis values,
+// which drivers an M584 adds to an axis or extruder, and which earlier commands lose effect because of an M584
+// (docs/firmware-behaviour.md#axes-and-m584). One M584 with two or more such commands is RRF213's single finding;
+// RRF201 and RRF203 then leave those commands to it (`summarised`), so that one mistake is reported once.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "lint/engine/rule.h"
+#include "rules/tool_helpers.h"
+
+namespace rrflint::motion {
+
+/// Commands that take per-axis values and loop over the axes that exist (RRF201's list).
+inline bool is_axis_command(const Command& c) {
+  if (c.fraction >= 0) return false;
+  if (c.letter == 'G') return c.number == 31;
+  if (c.letter != 'M') return false;
+  switch (c.number) {
+    case 92:
+    case 201:
+    case 203:
+    case 205:
+    case 206:
+    case 208:
+    case 350:
+    case 566:
+    case 574:
+    case 906:
+    case 913:
+    case 915:
+    case 917: return true;
+    default: return false;
+  }
+}
+
+/// Letters that are parameters, not axes, of an axis command.
+inline bool is_own_parameter(const Command& c, char letter) {
+  if (c.letter == 'G') return letter == 'P' || letter == 'S' || letter == 'T' || letter == 'K' || letter == 'H';
+  switch (c.number) {
+    case 915: return letter == 'S' || letter == 'F' || letter == 'H' || letter == 'T' || letter == 'R' || letter == 'P';
+    case 574: return letter == 'S' || letter == 'P';
+    default: return false;
+  }
+}
+
+/// Is parameter p of an axis command an axis value that RRF201 judges (not X/Y/Z/E, not the command's own letter,
+/// not a pin string, the first of duplicate letters)?
+inline bool is_axis_value(const ParsedFile& pf, const Command& c, const Param& p) {
+  const char L = p.letter;
+  if (L == 0 || L == 'X' || L == 'Y' || L == 'Z' || L == 'E') return false;
+  if (allowed_axis_letters().find(L) == std::string_view::npos || is_own_parameter(c, L)) return false;
+  if (p.kind == ValueKind::String || p.kind == ValueKind::Text) return false;
+  return pf.find(c, L).is(p);
+}
+
+/// Is this node a current command (M906/M913/M917)? Those reach CAN drivers only when sent.
+inline bool is_current_code(int number) { return number == 906 || number == 913 || number == 917; }
+
+/// The drive mapping as far as these rules need it: each axis's drivers (empty: unknown) and the extruders'.
+struct DriveMap {
+  struct Entry {
+    char letter;
+    std::vector<DriverId> drivers;
+    bool maybe;
+  };
+  std::vector<Entry> axes;
+  std::vector<DriverId> extruders;
+  bool axes_known = true, extruders_known = true;
+  const Entry* axis(char L) const {
+    auto it = std::find_if(axes.begin(), axes.end(), [&](const Entry& e) { return e.letter == L; });
+    return it == axes.end() ? nullptr : &*it;
+  }
+};
+
+inline DriveMap drive_map(const MachineState& s) {
+  DriveMap m;
+  for (const Axis& a : s.axes) m.axes.push_back({a.letter, a.drivers, a.maybe});
+  m.extruders = s.extruder_drivers;
+  m.axes_known = s.axes_known && !s.unknown_baseline;
+  m.extruders_known = s.extruders_known && !s.unknown_baseline && s.extruders == static_cast<int>(m.extruders.size());
+  return m;
+}
+
+/// Applies one M584 to the map as the machine model does (docs/firmware-behaviour.md#axes-and-m584).
+inline void apply_m584(DriveMap& m, const ParsedFile& pf, const Command& c, bool maybe) {
+  for (char L : allowed_axis_letters()) {
+    if (!pf.find(c, L)) continue;
+    auto d = get_driver_list(pf, c, L);
+    std::vector<DriverId> drivers = d.known() ? d.value : std::vector<DriverId>{};
+    if (auto* e = const_cast<DriveMap::Entry*>(m.axis(L))) e->drivers = drivers;
+    else m.axes.push_back({L, drivers, maybe});
+  }
+  if (pf.find(c, 'E')) {
+    auto e = get_driver_list(pf, c, 'E');
+    m.extruders_known = e.known() && !maybe;
+    m.extruders = m.extruders_known ? e.value : std::vector<DriverId>{};
+  }
+  if (pf.find(c, 'P') && (maybe || !get_int(pf, c, 'P').known())) m.axes_known = false;
+}
+
+/// Applies the M584 commands of nodes (from, to) to the map.
+inline void advance(DriveMap& m, const NodeContext& cx, NodeId from, NodeId to) {
+  cx.graph.nodes.find_if(from + 1, to, [&](NodeId, const Node& n) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, n);
+    if (k.is('M', 584)) apply_m584(m, *k.pf, *k.c, n.maybe);
+    return false;
+  });
+}
+
+/// The drivers in `now` that `before` lacks and that a setting sent at `before` time misses: local ones for
+/// microstepping (CAN drivers get it from M584 itself), CAN-connected ones for currents.
+inline std::vector<DriverId> added_drivers(const std::vector<DriverId>& before, const std::vector<DriverId>& now,
+                                           bool can) {
+  std::vector<DriverId> out;
+  if (before.empty()) return out;  // unknown before
+  for (DriverId d : now)
+    if ((d.board > 0) == can && std::find(before.begin(), before.end(), d) == before.end()) out.push_back(d);
+  return out;
+}
+
+/// Why an earlier command loses effect at an M584.
+enum class Loss : uint8_t { Created, Microstepping, Current };
+
+struct Dependent {
+  NodeId node;
+  char letter;  // 'E': the extruders
+  Loss why;
+  std::vector<DriverId> added;  // Microstepping, Current: the drivers that miss the setting
+};
+
+/// Is the setting of `letter` by a command of `number` sent again after the M584 at `m` (any later command of that
+/// code naming it, even conditional or unknown)? Then the drivers it adds receive it after all.
+inline bool reapplied_after(const NodeContext& cx, NodeId m, int number, char letter) {
+  return cx.graph.nodes.find_if(m + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, n);
+    return k.is('M', number) && k.pf->find(*k.c, letter);
+  }) != kNoNode;
+}
+
+/// The value an M350/M906/M913/M917 sets for extruder i: RRF repeats the last value of a short list. Unknown (an
+/// expression, a list longer than the extruders: RRF202) gives nothing.
+inline bool extruder_value(const ParsedFile& pf, const Command& c, size_t i, size_t count, double& out) {
+  auto v = get_float_list(pf, c, 'E');
+  if (!v.known() || v.value.empty() || v.value.size() > count) return false;
+  out = v.value[std::min(i, v.value.size() - 1)];
+  return true;
+}
+
+/// Is `value` (for one axis or extruder) a setting that a driver added later misses? M350: anything but x16 with
+/// interpolation (RRF's default; an I given as an expression: not judged); currents: any value.
+inline bool matters(const ParsedFile& pf, const Command& c, double value) {
+  if (is_current_code(c.number)) return true;
+  auto I = get_int(pf, c, 'I');
+  if (I.unknown()) return false;
+  return value >= 0 && (value != 16 || !(I.known() && I.value > 0));
+}
+
+/// The drivers that the M584 at `m` adds to `letter` (an axis, or 'E') and that miss the setting the command `d`
+/// made before it, when the drivers were `before` (axes) or `at.extruders`. Empty when nothing is lost: an unknown
+/// value or mapping, a conditional M584, a default M350, or the setting sent again after the M584.
+inline std::vector<DriverId> lost_setting(const NodeContext& cx, const tools::NodeCommand& d, NodeId m, char letter,
+                                          const std::vector<DriverId>& before, const DriveMap& at) {
+  std::vector<DriverId> out;
+  const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, m);
+  if (!k || k.node->maybe) return out;
+  const bool can = is_current_code(d.c->number);
+  auto now = get_driver_list(*k.pf, *k.c, letter);
+  if (!now.known()) return out;
+  if (letter != 'E') {
+    auto v = get_float(*d.pf, *d.c, letter);
+    if (v.known() && matters(*d.pf, *d.c, v.value)) out = added_drivers(before, now.value, can);
+  } else if (at.extruders_known) {
+    const size_t n = std::min(at.extruders.size(), now.value.size());
+    for (size_t i = 0; i < n; ++i) {
+      double v = 0;
+      if (at.extruders[i] == now.value[i] || (now.value[i].board > 0) != can) continue;
+      if (extruder_value(*d.pf, *d.c, i, at.extruders.size(), v) && matters(*d.pf, *d.c, v))
+        out.push_back(now.value[i]);
+    }
+  }
+  if (!out.empty() && reapplied_after(cx, m, d.c->number, letter)) out.clear();
+  return out;
+}
+
+/// The first M584 after node `from` in this segment that names `letter`; kNoNode if none.
+inline NodeId next_m584(const NodeContext& cx, NodeId from, char letter) {
+  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, n);
+    return k.is('M', 584) && k.pf->find(*k.c, letter);
+  });
+}
+
+/// Can the M584 make earlier commands lose effect at all: does it create an axis, or add drivers to an axis or an
+/// extruder? Most M584 commands do neither (a restated mapping), and then nothing needs to be walked.
+inline bool changes_mapping(const tools::NodeCommand& k, const DriveMap& at) {
+  for (char L : allowed_axis_letters()) {
+    if (!k.pf->find(*k.c, L)) continue;
+    const DriveMap::Entry* e = at.axis(L);
+    if (!e) return true;
+    auto now = get_driver_list(*k.pf, *k.c, L);
+    if (now.known() &&
+        (!added_drivers(e->drivers, now.value, false).empty() || !added_drivers(e->drivers, now.value, true).empty()))
+      return true;
+  }
+  auto now = get_driver_list(*k.pf, *k.c, 'E');
+  if (!now.known() || !at.extruders_known) return false;
+  for (size_t i = 0; i < std::min(now.value.size(), at.extruders.size()); ++i)
+    if (!(now.value[i] == at.extruders[i])) return true;
+  return false;
+}
+
+/// The earlier commands in this segment that lose effect because of the M584 at node `m`, whose drive mapping
+/// before it runs is `at`: axis values of axes it creates (RRF201), and the RRF203 cases whose later M584 it is.
+/// E values before the first `M584 E` (RRF202) are rejected with an error, not lost silently: not counted.
+inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const DriveMap& at) {
+  std::vector<Dependent> out;
+  const tools::NodeCommand mk = tools::command_at(cx.machine, cx.graph, m);
+  if (!mk || !at.axes_known || !changes_mapping(mk, at)) return out;
+  std::map<char, std::vector<std::pair<NodeId, tools::NodeCommand>>> pending;  // RRF203 candidates by letter
+  cx.graph.nodes.find_if(cx.segment().begin, m, [&](NodeId i, const Node& n) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, n);
+    if (!k) return false;
+    if (k.is('M', 584)) {
+      for (auto& [L, list] : pending)
+        if (k.pf->find(*k.c, L)) list.clear();
+      return false;
+    }
+    if (!is_axis_command(*k.c)) return false;
+    const bool settings = k.is('M', 350) || (k.c->fraction < 0 && is_current_code(k.c->number));
+    for (const Param& p : k.pf->params(*k.c)) {
+      const char L = p.letter;
+      if (is_axis_value(*k.pf, *k.c, p) && !at.axis(L) && mk.pf->find(*mk.c, L)) {
+        const bool override_line = (k.is('M', 208) || k.is('G', 31)) && tools::inside_m501(cx.graph, i);
+        if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node->maybe))
+          out.push_back({i, L, Loss::Created, {}});
+      } else if (settings && !n.maybe && (L == 'E' || at.axis(L)) && k.pf->find(*k.c, L).is(p)) {
+        pending[L].push_back({i, k});
+      }
+    }
+    return false;
+  });
+  for (auto& [L, list] : pending) {
+    if (!mk.pf->find(*mk.c, L)) continue;
+    const DriveMap::Entry* e = L == 'E' ? nullptr : at.axis(L);
+    if (L != 'E' && (!e || e->maybe)) continue;
+    for (auto& [i, k] : list) {
+      std::vector<DriverId> lost = lost_setting(cx, k, m, L, e ? e->drivers : std::vector<DriverId>{}, at);
+      if (!lost.empty()) out.push_back({i, L, k.is('M', 350) ? Loss::Microstepping : Loss::Current, lost});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Dependent& a, const Dependent& b) { return a.node < b.node; });
+  return out;
+}
+
+/// How many distinct commands the dependents are.
+inline size_t command_count(const std::vector<Dependent>& deps) {
+  size_t n = 0;
+  for (size_t i = 0; i < deps.size(); ++i) n += i == 0 || deps[i].node != deps[i - 1].node;
+  return n;
+}
+
+/// RRF213 reports an M584 that two or more earlier commands depend on.
+inline bool summary_fires(const std::vector<Dependent>& deps) { return command_count(deps) >= 2; }
+
+/// Is the command at `cx` one of the dependents of the M584 at `m` that RRF213 reports as one finding? RRF201 and
+/// RRF203 then leave it to RRF213.
+inline bool summarised(const NodeContext& cx, NodeId m) {
+  if (m == kNoNode || cx.graph.nodes[m].maybe) return false;
+  DriveMap at = drive_map(cx.state);
+  advance(at, cx, cx.id, m);
+  const std::vector<Dependent> deps = dependents(cx, m, at);
+  if (!summary_fires(deps)) return false;
+  return std::any_of(deps.begin(), deps.end(), [&](const Dependent& d) { return d.node == cx.id; });
+}
+
+}  // namespace rrflint::motion
