@@ -122,7 +122,8 @@ TEST_CASE("graph: missing files, other volumes and paths above the root are even
 
 TEST_CASE("graph: M505 changes the folder for later relative names", "[graph]") {
   auto b = build({
-      {"/sys/config.g", "M98 P\"a.g\"\nM505 P\"alt\"\nM98 P\"a.g\"\nM501\nif true\n  M505 P\"/sys\"\nM98 P\"a.g\"\n"},
+      {"/sys/config.g",
+       "M98 P\"a.g\"\nM505 P\"alt\"\nM98 P\"a.g\"\nM501\nif move.axes[0].homed\n  M505 P\"/sys\"\nM98 P\"a.g\"\n"},
       {"/sys/a.g", "M83\n"},
       {"/sys/alt/a.g", "M82\n"},
       {"/sys/alt/config-override.g", "G10 P0 X1\n"},
@@ -130,6 +131,11 @@ TEST_CASE("graph: M505 changes the folder for later relative names", "[graph]") 
   CHECK(boot(*b) ==
         ">/sys/config.g(boot) M98 >/sys/a.g(M98) M83 < M505 M98 >/sys/alt/a.g(M98) M82 < "
         "M501 >/sys/alt/config-override.g(M501) G10 < ?M505 M98 >/sys/alt/a.g(M98) M82 < <");
+  // A branch known at boot to run runs for certain: its M505 moves the folder.
+  auto t = build({{"/sys/config.g", "M505 P\"alt\"\nif true\n  M505 P\"/sys\"\nM98 P\"a.g\"\n"},
+                  {"/sys/a.g", "M83\n"},
+                  {"/sys/alt/a.g", "M82\n"}});
+  CHECK(boot(*t) == ">/sys/config.g(boot) M505 M505 M98 >/sys/a.g(M98) M83 < <");
 }
 
 TEST_CASE("graph: cycles are reported and not followed", "[graph]") {
@@ -405,4 +411,17 @@ TEST_CASE("lint: threads report the same for files the graph loads while file ru
   CHECK(has("/sys/homeall.g", "RRF101"));
   CHECK(has("/sys/config.g", "RRF901"));  // a suppression of an unknown rule
   for (unsigned threads : {2u, 3u}) CHECK(lint(threads) == serial);
+}
+
+TEST_CASE("graph: a branch known at boot runs for certain or not at all", "[graph]") {
+  auto b = build({{"/sys/config.g",
+                   "global mode = \"idex\"\n"
+                   "if global.mode == \"idex\"\n  M98 P\"idex.g\"\nelse\n  M98 P\"single.g\"\n"
+                   "if directories.system != \"0:/sys/\"\n  M83\nelif !false\n  M82\n  if move.axes[0].homed\n    G28\n"
+                   "if move.axes[0].homed\n  M84\nelse\n  M17\n"},
+                  {"/sys/idex.g", "M584 U3\n"},
+                  {"/sys/single.g", "M584 X0\n"}});
+  // The else of a known condition, and the if known false, do not run; a nested unknown if stays maybe, as does a
+  // chain whose condition is not known.
+  CHECK(boot(*b) == ">/sys/config.g(boot) M98 >/sys/idex.g(M98) M584 < M82 ?G28 ?M84 ?M17 <");
 }

@@ -94,7 +94,7 @@ TEST_CASE("model: extruders come from M584 E", "[model]") {
   CHECK(config("M83\n")->end().extruders == 0);                    // none by default from 3.3
   CHECK(config("M83\n", Version(3, 2, 2))->end().extruders == 1);  // one by default in 3.0-3.2
   CHECK_FALSE(config("M584 E{global.e}\n")->end().extruders_known);
-  CHECK_FALSE(config("if true\n  M584 E0.3\n")->end().extruders_known);
+  CHECK_FALSE(config("if move.axes[0].homed\n  M584 E0.3\n")->end().extruders_known);
   // An E swallowed as an exponent creates no extruder.
   CHECK(config("M584 X0 Y1 Z2E3\n")->end().extruders == 0);
 }
@@ -229,7 +229,7 @@ TEST_CASE("model: T selects, T-1 deselects, a missing tool selects none", "[mode
   auto none = config("M563 P0 S\"a\"\nT0 P0\nT5 P0\n");
   CHECK(none->end().current_tool == -1);
   CHECK(none->end().current_tool_known);
-  auto maybe = config("M563 P0 S\"a\"\nif true\n  T0\n");
+  auto maybe = config("M563 P0 S\"a\"\nif move.axes[0].homed\n  T0\n");
   CHECK_FALSE(maybe->end().current_tool_known);
 }
 

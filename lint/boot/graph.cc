@@ -3,6 +3,7 @@
 #include <map>
 
 #include "lint/boot/const_eval.h"
+#include "lint/boot/stretches.h"
 
 #include <algorithm>
 #include <set>
@@ -92,6 +93,13 @@ class Builder {
   // anything else, is absent: unknown).
   std::map<std::string, ConstValue> globals_;
   struct FileValues;  // the `var`s of one file run, and which assignment lines it has applied
+  /// The file's top-level if/elif/else chains (lint/boot/branches.h); found once a file.
+  const std::vector<Chain>& chains(const FileUnit& u) {
+    auto [it, fresh] = chains_.try_emplace(u.index);
+    if (fresh) it->second = top_level_chains(u.parsed);
+    return it->second;
+  }
+  std::unordered_map<uint32_t, std::vector<Chain>> chains_;  // unit -> chains
   /// The file's global/var/set lines, in order; found once a file.
   const std::vector<uint32_t>& assignment_lines(const FileUnit& u);
   std::unordered_map<uint32_t, std::vector<uint32_t>> assignments_;  // unit -> assignment_lines
@@ -243,41 +251,42 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
                                  call_site == kNoNode ? kNoNode : g_.nodes[call_site].enter, call_site});
   stack_.push_back(u.index);
   const ParsedFile& pf = u.parsed;
-  // The commands between those the graph acts on are pushed a stretch at a time, cut where a block begins or ends.
+  // The commands between those the graph acts on are pushed a stretch at a time (lint/boot/stretches.h).
   const std::vector<uint32_t>& acts = acting_commands(u);
-  const auto& blocks = pf.block_commands;
-  auto block = blocks.begin();
-  uint32_t ci = 0;  // the next command to push
-  // Lines written into a file (M28 … M29) do not run: they are skipped like the space between two runs.
-  auto written = pf.written_commands.begin();
+  FileValues fv{assignment_lines(u)};
+  Stretches stretches(pf, chains(u), [&](uint32_t line) {
+    assign_until(u, fv, line);
+    return const_eval(pf.text(pf.lines[line].meta_arg), ConstEnv{"0:" + sys_dir_ + "/", &globals_, &fv.vars});
+  });
+  uint32_t ci = 0;                       // the next command to push
   auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
     while (ci < end) {
-      while (written != pf.written_commands.end() && written->second <= ci) ++written;
-      const bool skip = written != pf.written_commands.end() && written->first <= ci;
-      if (skip) {
-        ci = std::min(end, written->second);
+      const Stretches::Stretch st = stretches.next(ci, end);
+      if (!st.runs) {
+        ci = st.end;
         continue;
       }
-      while (block != blocks.end() && block->second <= ci) ++block;
-      const bool in = block != blocks.end() && block->first <= ci;
-      uint32_t stop = std::min(end, in ? block->second : block != blocks.end() ? block->first : end);
-      if (written != pf.written_commands.end()) stop = std::min(stop, written->first);
       const size_t room = o_.max_nodes - std::min(o_.max_nodes, g_.nodes.size());
-      const auto n = static_cast<uint32_t>(std::min<size_t>(stop - ci, room));
-      g_.nodes.push_commands(Node{NodeKind::Command, call_kind, maybe || in, depth, u.index, ci, enter, kNoNode}, n);
+      const auto n = static_cast<uint32_t>(std::min<size_t>(st.end - ci, room));
+      const bool m = maybe || (st.in_block && !st.certain);
+      g_.nodes.push_commands(Node{NodeKind::Command, call_kind, m, depth, u.index, ci, enter, kNoNode}, n);
       ci += n;
-      if (ci < stop) {
+      if (ci < st.end) {
         g_.truncated = true;
         return false;
       }
     }
     return true;
   };
-  FileValues fv{assignment_lines(u)};
   for (const uint32_t a : acts) {
     if (!push_until(a) || full()) break;
     const CommandTable::Code code = pf.commands.code(a);
-    const bool m = maybe || pf.lines.in_block(code.line);
+    const Stretches::Stretch st = stretches.next(a, a + 1);
+    if (!st.runs) {  // in a branch known not to run
+      ci = a + 1;
+      continue;
+    }
+    const bool m = maybe || (pf.lines.in_block(code.line) && !st.certain);
     const NodeId id = push(Node{NodeKind::Command, call_kind, m, depth, u.index, a, enter, kNoNode});
     ++ci;
     if (code.letter == 'T') {
