@@ -49,12 +49,7 @@ inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& un
   });
 }
 
-/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
-inline bool runs_again(const NodeContext& cx, NodeId from) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    return n.kind == NodeKind::Command && n.unit == cx.self.unit && n.index == cx.self.index;
-  }) != kNoNode;
-}
+using tools::runs_again;
 
 /// Calls f(id, node) for each node that ran after node `from` and before this one: in this segment, or, for a
 /// macro run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.
