@@ -21,7 +21,8 @@ at the later `M584` that creates the axis, if there is one. Hidden axes (`M584 P
 so they are not findings here. An `M208` or `G31` line of config-override.g that the M501 runs before a later
 `M584` creates the axis is a note of [m501-too-early](m501-too-early.md)'s finding instead. When two or more
 earlier commands lose effect because of one `M584`, they are notes of
-[m584-after-dependents](m584-after-dependents.md)'s single finding at that `M584` instead.
+[m584-after-dependents](m584-after-dependents.md)'s single finding at that `M584` instead. A line that runs
+again after that `M584` (a macro called before and after it) sets the axis then, and is not reported.
 
 `G31 C` gets its own message: up to RRF 3.2 `C` was the probe's temperature coefficient; from 3.3 it is the C axis
 offset (the coefficient is `T`).
@@ -85,6 +86,7 @@ void check(const NodeContext& cx, Sink& out) {
         tools::inside_m501(cx.graph, cx.id))
       continue;  // a line M500 wrote, run by an M501 before the M584: a note of m501-too-early's finding
     if (motion::summarised(cx, later)) continue;  // a note of m584-after-dependents' finding at that M584
+    if (later != kNoNode && tools::runs_again(cx, later)) continue;  // the line runs again once the axis exists
     if (later != kNoNode) {
       out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,

@@ -22,7 +22,8 @@ On targets from RRF 3.3, where no extruder exists until `M584 E…` creates it, 
 
 It stays silent on RRF 2.x–3.2 targets (they have default extruders), for values written as expressions, when
 the extruder count is not known (an `M584 E` with expressions or inside an `if`), and for commands inside an
-`if`/`while`.
+`if`/`while`. A line that runs again after the `M584 E…` (a macro called before and after it) takes effect
+then, and is not reported either.
 
 ## Firmware versions
 A **hazard** of RRF 3.3 and later, which have no default extruder. It is judged at the target only. A config that
@@ -69,6 +70,13 @@ NodeId later_m584_e(const NodeContext& cx) {
                            [&](const tools::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
 }
 
+/// Does this very line run again after the M584 that creates the extruders (a macro called before and after it)?
+/// Then it takes effect after all.
+bool runs_again_later(const NodeContext& cx) {
+  const NodeId at = later_m584_e(cx);
+  return at != kNoNode && tools::runs_again(cx, at);
+}
+
 void note_m584_e(const NodeContext& cx, Report& r) {
   if (NodeId at = later_m584_e(cx); at != kNoNode) r.note(cx.where(at), "the extruders are created here");
 }
@@ -108,7 +116,7 @@ void check_m563(const NodeContext& cx, Sink& out) {
   auto D = get_int_list(pf, c, 'D');
   if (!D.known() || !pf.find(c, 'P')) return;
   const int64_t bad = first_beyond(D.value, s.extruders);
-  if (bad < 0) return;
+  if (bad < 0 || runs_again_later(cx)) return;
   auto P = get_int(pf, c, 'P');
   const bool n_known = P.known() && P.value >= 0;
   const int n = n_known ? static_cast<int>(P.value) : -1;
@@ -130,7 +138,7 @@ void check_e_values(const NodeContext& cx, Sink& out) {
   if (!e || e->kind == ValueKind::None || is_unknown_value(*e)) return;
   if (e->kind != ValueKind::Number && e->kind != ValueKind::List) return;
   const size_t count = list_items(pf, *e).size();
-  if (count <= static_cast<size_t>(s.extruders)) return;
+  if (count <= static_cast<size_t>(s.extruders) || runs_again_later(cx)) return;
   const std::string answer = s.firmware >= kRrf3_5_2 ? std::string("array too long for parameter 'E'")
                                                      : fmt::format("array too long, max length = {}", s.extruders);
   std::string what = count == 1 ? "an extruder value" : fmt::format("{} extruder values", count);
@@ -149,7 +157,7 @@ void check_d(const NodeContext& cx, Sink& out) {
   if (!D.known() || D.value.empty()) return;
   if (c.number != 572) D.value.erase(D.value.begin() + 1, D.value.end());  // M591/M221 read one number
   const int64_t bad = first_beyond(D.value, s.extruders);
-  if (bad < 0) return;
+  if (bad < 0 || runs_again_later(cx)) return;
   const std::string answer =
       c.number == 572 ? fmt::format("Invalid extruder number '{}'", bad) : std::string("parameter 'D' too high");
   Report r = out.report(kMeta, cx.at(D.param->span),

@@ -103,8 +103,6 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
 
 void check(const FileContext& cx, Sink& out) {
   if (cx.target.version < kRrf3_3) return;
-  // resurrect.g is written by the firmware (with G10 up to 3.4, with M568 from 3.5), not by the user.
-  if (file_role(cx.unit.sd_path) == FileRole::Resurrect) return;
   const ParsedFile& pf = cx.parsed();
   for (const uint32_t ci : pf.with_code('G', 10)) {
     const Command& c = pf.commands[ci];

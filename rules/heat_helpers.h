@@ -32,11 +32,10 @@ inline bool names_heater(const tools::NodeCommand& k, int h) {
   return std::find(H.value.begin(), H.value.end(), h) != H.value.end();
 }
 
-/// Is this node judged by other rules or by none? Lines of config-override.g (at the M501 they are RRF401's notes;
-/// unloaded, RRF404's) and of resurrect.g (a snapshot the firmware wrote, run only by M916).
+/// Is this node judged by other rules? Lines of config-override.g (at the M501 they are RRF401's notes; unloaded,
+/// RRF404's). No finding stands in resurrect.g at all (the engine drops them: docs/firmware-behaviour.md#system-files).
 inline bool judged_elsewhere(const NodeContext& cx) {
-  const FileRole role = file_role(cx.unit().sd_path);
-  return role == FileRole::ConfigOverride || role == FileRole::Resurrect || tools::inside_m501(cx.graph, cx.id);
+  return file_role(cx.unit().sd_path) == FileRole::ConfigOverride || tools::inside_m501(cx.graph, cx.id);
 }
 
 /// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when an
@@ -50,12 +49,7 @@ inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& un
   });
 }
 
-/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
-inline bool runs_again(const NodeContext& cx, NodeId from) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    return n.kind == NodeKind::Command && n.unit == cx.self.unit && n.index == cx.self.index;
-  }) != kNoNode;
-}
+using tools::runs_again;
 
 /// Calls f(id, node) for each node that ran after node `from` and before this one: in this segment, or, for a
 /// macro run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.

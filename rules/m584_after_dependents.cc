@@ -27,7 +27,9 @@ such command they report it themselves. Not counted, because nothing is lost: `M
 axes that exist already (RRF stores them per axis, and they survive a remap), current on local drivers, and
 `M906 I…` (no axis). E values before the first `M584 E` on RRF 3.3 and later are not counted either: RRF rejects
 them with an error message, and they stay [extruder-before-creation](extruder-before-creation.md)'s errors.
-Silent for an `M584` inside `if`/`while` and where the axes are unknown.
+Silent for an `M584` inside `if`/`while` and where the axes are unknown. A line that runs again after this
+`M584` (a macro called before and after it) is not counted, and a line run twice before it (a macro called twice)
+counts once.
 
 ## Why is this bad?
 RRF applies most axis settings to the axes and drivers that exist when the command runs. An `M584` placed after
@@ -90,13 +92,14 @@ Location where(const NodeContext& cx, const motion::Dependent& d) {
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is('M', 584) || !cx.certain()) return;
   const std::vector<motion::Dependent> deps = motion::dependents(cx, cx.id, motion::drive_map(cx.state));
-  if (!motion::summary_fires(deps)) return;
+  if (!motion::summary_fires(cx.graph, deps)) return;
   const Command c = cx.command();
   Report r = out.report(kMeta, cx.at(c.span),
                         fmt::format("{} comes after {} commands that configure the axes or drivers it maps, and they "
                                     "lose their effect: move this M584 before them",
-                                    tools::quote(cx.parsed(), c), motion::command_count(deps)));
-  for (const motion::Dependent& d : deps) r.note(where(cx, d), note_text(cx, d));
+                                    tools::quote(cx.parsed(), c), motion::command_count(cx.graph, deps)));
+  for (size_t i = 0; i < deps.size(); ++i)
+    if (!motion::repeated_run(cx.graph, deps, i)) r.note(where(cx, deps[i]), note_text(cx, deps[i]));
 }
 
 }  // namespace

@@ -235,7 +235,9 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
       const char L = p.letter;
       if (is_axis_value(*k.pf, *k.c, p) && !at.axis(L) && mk.pf->find(*mk.c, L)) {
         const bool override_line = (k.is('M', 208) || k.is('G', 31)) && tools::inside_m501(cx.graph, i);
-        if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node->maybe))
+        // A line that runs again after the M584 (a macro called before and after it) sets the axis then.
+        if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node->maybe) &&
+            !tools::runs_again(cx.graph, n, m, cx.segment().end))
           out.push_back({i, L, Loss::Created, {}});
       } else if (settings && !n.maybe && (L == 'E' || at.axis(L)) && k.pf->find(*k.c, L).is(p)) {
         pending[L].push_back({i, k});
@@ -256,15 +258,26 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
   return out;
 }
 
-/// How many distinct commands the dependents are.
-inline size_t command_count(const std::vector<Dependent>& deps) {
+/// Is dependent i a second run of the line of an earlier one (a macro called twice before the M584)?
+inline bool repeated_run(const Graph& g, const std::vector<Dependent>& deps, size_t i) {
+  const Node& a = g.nodes[deps[i].node];
+  for (size_t j = 0; j < i; ++j) {
+    const Node& b = g.nodes[deps[j].node];
+    if (deps[j].node != deps[i].node && b.unit == a.unit && b.index == a.index) return true;
+  }
+  return false;
+}
+
+/// How many distinct commands (lines of a file: a line run twice is one) the dependents are.
+inline size_t command_count(const Graph& g, const std::vector<Dependent>& deps) {
   size_t n = 0;
-  for (size_t i = 0; i < deps.size(); ++i) n += i == 0 || deps[i].node != deps[i - 1].node;
+  for (size_t i = 0; i < deps.size(); ++i)
+    n += (i == 0 || deps[i].node != deps[i - 1].node) && !repeated_run(g, deps, i);
   return n;
 }
 
 /// RRF213 reports an M584 that two or more earlier commands depend on.
-inline bool summary_fires(const std::vector<Dependent>& deps) { return command_count(deps) >= 2; }
+inline bool summary_fires(const Graph& g, const std::vector<Dependent>& deps) { return command_count(g, deps) >= 2; }
 
 /// Is the command at `cx` one of the dependents of the M584 at `m` that RRF213 reports as one finding? RRF201 and
 /// RRF203 then leave it to RRF213.
@@ -273,7 +286,7 @@ inline bool summarised(const NodeContext& cx, NodeId m) {
   DriveMap at = drive_map(cx.state);
   advance(at, cx, cx.id, m);
   const std::vector<Dependent> deps = dependents(cx, m, at);
-  if (!summary_fires(deps)) return false;
+  if (!summary_fires(cx.graph, deps)) return false;
   return std::any_of(deps.begin(), deps.end(), [&](const Dependent& d) { return d.node == cx.id; });
 }
 

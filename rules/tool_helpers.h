@@ -68,6 +68,17 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
   });
 }
 
+/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
+/// The device, axis and extruder order rules stay silent then (RRF201, RRF202, RRF205, RRF209, RRF213).
+inline bool runs_again(const Graph& g, const Node& self, NodeId from, NodeId end) {
+  return g.nodes.find_if(from + 1, end, [&](NodeId, const Node& n) {
+    return n.kind == NodeKind::Command && n.unit == self.unit && n.index == self.index;
+  }) != kNoNode;
+}
+inline bool runs_again(const NodeContext& cx, NodeId from) {
+  return runs_again(cx.graph, cx.self, from, cx.segment().end);
+}
+
 /// The later M563 in this segment that defines tool n.
 inline NodeId later_m563(const NodeContext& cx, int n) {
   return find_later(cx, 'M', 563, [&](const NodeCommand& nc) {

@@ -93,8 +93,6 @@ void check(const NodeContext& cx, Sink& out) {
     return;
   }
   if (!s.tool_certainly_absent(n) || s.failed_tools.count(n)) return;
-  // resurrect.g is written by the firmware from the machine as it was at the pause or power failure.
-  if (file_role(cx.unit().sd_path) == FileRole::Resurrect) return;
   const NodeId later = cx.in_boot() ? tools::later_m563(cx, n) : kNoNode;
   if (!cx.in_boot() && created_anywhere(cx.machine, n)) return;
   // `T99` for a tool that nothing creates, beyond the 0–49 range, is the old way to deselect every tool.

@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "lint/base/trace.h"
+#include "lint/boot/commands.h"
 #include "lint/engine/schedule.h"
 #include "lint/engine/suppress.h"
 
@@ -145,6 +146,17 @@ void drop_after_first_line_of_cr_files(MachineResult& res, const SourceManager& 
   std::erase_if(res.diagnostics, [&](const Diagnostic& d) {
     return !raw.count(d.code) && d.loc.file < first_line_end.size() && d.loc.span.begin >= first_line_end[d.loc.file];
   });
+}
+
+// 9. resurrect.g is a snapshot the firmware writes at every pause of an SD print and on power loss, and only M916
+// runs it: none of its lines is the user's mistake, so no finding stands in it
+// (docs/firmware-behaviour.md#system-files). Findings elsewhere may still point into it with a note.
+void drop_findings_in_firmware_written_files(MachineResult& res, const Machine& m) {
+  std::set<FileId> written;
+  for (uint32_t i = 0; i < m.unit_count(); ++i)
+    if (file_role(m.unit(i).sd_path) == FileRole::Resurrect) written.insert(m.unit(i).source->id());
+  if (written.empty()) return;
+  std::erase_if(res.diagnostics, [&](const Diagnostic& d) { return written.count(d.loc.file) != 0; });
 }
 
 }  // namespace
@@ -315,6 +327,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   apply_suppressions(res, rule_set, rules, options, parallel && options.inline_suppressions ? &directives : nullptr);
   trace::mark("suppressions");
   drop_after_first_line_of_cr_files(res, sources, rules);
+  drop_findings_in_firmware_written_files(res, m);
   return res;
 }
 
