@@ -272,6 +272,29 @@ def test_lone_macro(s, card):
     check(codes(s.diagnostics(uri_of(lone), "after didSave")) == ["RRF104"], "relinted on save")
 
 
+def test_untitled_buffer(s, card):
+    s.initialize()
+    s.notify("textDocument/didOpen", {"textDocument": {"uri": "untitled:Untitled-1", "languageId": "rrf-gcode",
+                                                       "version": 4, "text": "M563 P0 S\"it's\" D0\n"}})
+    p = s.diagnostics("untitled:Untitled-1")
+    check(codes(p) == ["RRF104"] and p["version"] == 4, f"an untitled buffer: {p}")
+
+
+def test_rrflint_toml(s, card):
+    s.initialize()
+    config = os.path.join(card, "sys", "config.g")
+    with open(os.path.join(card, ".rrflint.toml"), "w", encoding="utf-8") as f:
+        f.write('ignore = ["apostrophe-in-string"]\n')
+    s.open(config)
+    check(codes(s.diagnostics(uri_of(config))) == ["RRF320", "RRF301"], "the config file's ignore is applied")
+    with open(os.path.join(card, ".rrflint.toml"), "w", encoding="utf-8") as f:
+        f.write('ignore = ["apostrophe-in-string"\n')  # broken: the next lint says so and clears
+    s.notify("textDocument/didSave", {"textDocument": {"uri": uri_of(config)}})
+    shown = s.wait(lambda m: m.get("method") == "window/showMessage", "the message about the broken config file")
+    check(shown["params"]["type"] == 1 and ".rrflint.toml" in shown["params"]["message"], f"message: {shown}")
+    check(codes(s.diagnostics(uri_of(config), "config.g cleared")) == [], "cleared while the config is broken")
+
+
 def test_method_not_found(s, card):
     s.initialize()
     r = s.request("textDocument/hover", {"textDocument": {"uri": "file:///x.g"}, "position": {"line": 0,

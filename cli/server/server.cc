@@ -49,9 +49,10 @@ class Server {
  private:
   void send(const json& m) { broken_ = broken_ || !write_message(1, m); }
 
+  // A line for stderr and, once initialize is answered (LSP allows nothing earlier), for the client's log.
   void log(int type, const std::string& msg) {
     std::cerr << "rrflint server: " << msg << std::endl;
-    send(notification("window/logMessage", {{"type", type}, {"message", msg}}));
+    if (initialized_) send(notification("window/logMessage", {{"type", type}, {"message", msg}}));
   }
 
   // One message; the exit code when it was `exit`.
@@ -72,8 +73,10 @@ class Server {
                           "'method' must be a string and 'id' an integer or a string"));
       return std::nullopt;
     }
-    json params = msg.value("params", json::object());
-    if (params.is_null()) params = json::object();  // `exit` and `shutdown` are often sent with null params
+    static const json kNone = json::object();
+    auto p = msg.find("params");
+    // Not copied: didOpen and didChange carry whole files. `exit` and `shutdown` are often sent with null params.
+    const json& params = p == msg.end() || p->is_null() ? kNone : *p;
     if (!params.is_object() && !params.is_array()) {
       if (id_ok) send(error_response(*id, kInvalidParams, "'params' must be an object or an array"));
       return std::nullopt;

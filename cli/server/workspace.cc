@@ -13,11 +13,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The lone document's file name for a URI that names no file ("untitled:Untitled-1" -> "Untitled-1").
+// The lone document's file name for a URI that names no file ("untitled:Untitled-1" -> "Untitled-1.g": the client
+// sent it as G-code, so it is linted as a macro whatever its name).
 std::string name_of_uri(const std::string& uri) {
   const size_t cut = uri.find_last_of("/:");
   std::string name = cut == std::string::npos ? uri : uri.substr(cut + 1);
-  return name.empty() ? std::string("untitled.g") : name;
+  if (!to_lower(name).ends_with(".g")) name += ".g";
+  return name;
 }
 
 // An LSP range for a span of a file, in UTF-16 units.
@@ -49,7 +51,7 @@ json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::st
          {"code", d.code},
          {"codeDescription", {{"href", rule_url(docs_base, d.name)}}},
          {"source", "rrflint"},
-         {"message", fmt::format("{} ({})", d.message, d.name)}};
+         {"message", d.message}};
   json related = json::array();
   for (const Note& n : d.notes) {
     if (n.loc.file == kNoFile) continue;
@@ -199,9 +201,16 @@ void Workspace::lint(const std::string& key) {
   const fs::path dir =
       m.card ? m.card->sys_dir : (lone->path ? fs::path(*lone->path).parent_path() : fs::current_path(ec));
   if (!settings.effective(dir, eff)) {
-    log_(1, fmt::format("not linted: {}", settings.config_error()->str()));
+    // Logged each time, shown once until it changes (not on every keystroke).
+    const std::string why = fmt::format("rrflint: not linted: {}", settings.config_error()->str());
+    log_(1, why);
+    if (why != shown_) send_(notification("window/showMessage", {{"type", 1}, {"message", why}}));
+    shown_ = why;
+    std::map<std::string, json> none;  // what was published is for texts that have changed since: cleared
+    publish_all(key, m, none);
     return;
   }
+  shown_.clear();
   eff.lint.threads = cli::default_threads();
   cli::JobReader disk(job);
   OverlayReader reader(disk);
