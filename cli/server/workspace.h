@@ -74,7 +74,7 @@ class Workspace {
 
   std::function<void(json)> send_;
   std::function<void(int, const std::string&)> log_;
-  std::string shown_;  // the last configuration error shown to the user
+  std::string shown_;                             // the last configuration error shown to the user
   cli::CliOptions cli_;                           // the defaults: settings come from .rrflint.toml alone
   std::map<std::string, Document> docs_;          // by URI as the client sent it
   std::map<std::string, MachineEntry> machines_;  // by key: the card's sys folder, or "lone:" + URI
