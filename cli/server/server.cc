@@ -13,6 +13,7 @@
 #include "cli/cli.h"
 #include "cli/server/protocol.h"
 #include "cli/server/workspace.h"
+#include "frontend/disk.h"
 
 namespace rrflint::server {
 namespace {
@@ -154,6 +155,9 @@ namespace rrflint::cli {
 
 int run_server() {
   ::signal(SIGPIPE, SIG_IGN);  // a client gone: write() fails and the server stops, rather than being killed
+  // Files are copied, never mapped: in a long-lived process a file cut short on disk while it is read (an editor
+  // saving it) would raise SIGBUS and end the server (cli/main.cc turns mapping on for `check`).
+  map_large_files(false);
   server::Server s;
   return s.run();
 }
