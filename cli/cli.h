@@ -6,6 +6,7 @@
 //   fix.cc       the fix loop, atomic writes, unified diffs
 //   rules_cmd.cc `rrflint rule`: docs, JSON metadata, --generate-docs
 //   docs_url.cc  where the printed rule links point by default
+//   server/      `rrflint server`: the language server (protocol, text positions, documents and machines)
 #pragma once
 
 #include <filesystem>
@@ -158,6 +159,15 @@ struct PlanStats {
 void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings& settings, GitIgnore& gitignore,
           std::vector<Job>& jobs, bool& io_error, PlanStats* stats = nullptr);
 
+/// Where `rrflint check FILE` puts a file: its card (root and sys folder, absolute and normal) and its SD path there.
+struct FilePlace {
+  CardLocation card;
+  std::string sd_path;
+};
+/// The card of a file (absolute, normal; it need not exist yet), as plan() decides it for a file named on the
+/// command line; nullopt for a lone file (no card around it, or outside the card's sys/, macros/ and filaments/).
+std::optional<FilePlace> place_file(const std::string& abs);
+
 /// The FileReader of a job, with in-memory replacements (fixed text) on top.
 class JobReader : public FileReader {
  public:
@@ -233,6 +243,12 @@ struct RuleOptions {
 };
 /// `cli` gives --config / --isolated: the `docs-url` of the config found from the working directory is used.
 int run_rule(const RuleOptions& ro, const CliOptions& cli);
+
+// ---- server/ ----
+
+/// `rrflint server`: the language server on stdin and stdout (server/server.cc). The exit code: 0 after shutdown
+/// and exit, 1 on an exit (or the end of the input) without shutdown.
+int run_server();
 
 /// The git top-level folder holding `dir`, found by looking for `.git`; nullopt outside a repository.
 std::optional<fs::path> repo_root(const fs::path& dir);

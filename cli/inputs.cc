@@ -132,6 +132,13 @@ class Folders {
 
 }  // namespace
 
+std::optional<FilePlace> place_file(const std::string& abs) {
+  Folders folders;
+  const Folders::Place at = folders.place(abs, true);
+  if (!at.card || !at.sd || !machine_path(*at.sd)) return std::nullopt;
+  return FilePlace{CardLocation{absolute_normal(at.card->root), absolute_normal(at.card->sys_dir)}, *at.sd};
+}
+
 JobReader::JobReader(const Job& job) : job_(job) {
   std::error_code ec;
   if (job.card) {

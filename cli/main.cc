@@ -95,7 +95,8 @@ bool known_command(const std::vector<std::string>& args) {
     static const char* const kCommands[][2] = {{"check", "lint SD cards, sys folders, repositories or files"},
                                                {"config", "print the effective settings and where each came from"},
                                                {"model", "print the machine model the boot sequence builds"},
-                                               {"rule", "print a rule's documentation"}};
+                                               {"rule", "print a rule's documentation"},
+                                               {"server", "run the language server (LSP over stdio)"}};
     if (std::none_of(std::begin(kCommands), std::end(kCommands), [&](const auto& c) { return args[1] == c[0]; })) {
       std::string list;
       for (const auto& c : kCommands) list += fmt::format("\n  {:<8}{}", c[0], c[1]);
@@ -119,6 +120,7 @@ struct Commands {
   CLI::App* model = nullptr;
   CLI::App* rule = nullptr;
   CLI::App* config = nullptr;
+  CLI::App* server = nullptr;
 };
 
 // The options that check, model and config share.
@@ -260,6 +262,7 @@ int main(int argc, char** argv) {
   Commands c;
   add_check(app, c);
   add_model_rule_config(app, c);
+  c.server = app.add_subcommand("server", "Run the language server: LSP 3.17 over stdin and stdout");
   CliOptions& cli = c.cli;
 
   try {
@@ -274,6 +277,7 @@ int main(int argc, char** argv) {
   }
 
   if (c.rule->parsed()) return run_rule(c.ro, c.cli);
+  if (c.server->parsed()) return run_server();
 
   for (CLI::App* sub : {c.check, c.model, c.config}) {
     if (!sub->parsed()) continue;

@@ -1,0 +1,83 @@
+// The language server's documents and machines: open buffers, which machine each belongs to, linting a machine
+// with its open buffers over the disk, and publishing the diagnostics of every file of it.
+//
+// A document belongs to the machine `rrflint check FILE` would put it in (place_file: the nearest SD root or sys
+// folder); a file outside any card, and a document that is no file (an "untitled:" buffer), is a lone machine of its
+// own. Each change lints the document's machine at once, synchronously, so what is published is always the result
+// for the current text of every open buffer (no stale result, no debounce yet).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "cli/cli.h"
+#include "cli/server/protocol.h"
+
+namespace rrflint::server {
+
+/// A FileReader that serves open buffers and falls back to another reader (the disk) for everything else.
+class OverlayReader : public FileReader {
+ public:
+  explicit OverlayReader(FileReader& base) : base_(base) {}
+  /// Serves `bytes` for `sd_path` (case-insensitive), shown as `display`.
+  void add(const std::string& sd_path, std::string display, std::string bytes);
+  ReadResult read(std::string_view sd_path) override;
+  std::vector<std::string> list(std::string_view sd_dir) override;
+
+ private:
+  struct Buffer {
+    std::string sd_path, display, bytes;
+  };
+  FileReader& base_;
+  std::map<std::string, Buffer> buffers_;  // by lower-cased SD path
+};
+
+class Workspace {
+ public:
+  /// `send`: sends a notification to the client; `log`: a line for the client's log.
+  Workspace(std::function<void(json)> send, std::function<void(int type, const std::string&)> log)
+      : send_(std::move(send)), log_(std::move(log)) {}
+
+  void open(const std::string& uri, std::string text, int64_t version);
+  /// `changes`: the contentChanges of didChange (a full text, or a range and its replacement, in order).
+  void change(const std::string& uri, int64_t version, const json& changes);
+  void save(const std::string& uri);
+  void close(const std::string& uri);
+  bool is_open(const std::string& uri) const { return docs_.count(uri) > 0; }
+  const std::string* text(const std::string& uri) const;
+
+ private:
+  struct Document {
+    std::string uri;
+    std::optional<std::string> path;  // absolute, normal; none for a URI that names no file
+    std::string text;
+    int64_t version = 0;
+    std::string machine;  // key into machines_
+    std::string sd_path;  // in its card ("" for a lone machine)
+  };
+  struct MachineEntry {
+    std::optional<CardLocation> card;  // none: a lone document
+    std::string lone_uri;
+    std::set<std::string> published;  // URIs last published with findings
+  };
+
+  void place(Document& doc);  // finds the document's machine (and creates its entry)
+  cli::Job job_of(const MachineEntry& m, const Document* lone) const;
+  void lint(const std::string& key);
+  void publish_all(const std::string& key, MachineEntry& m, std::map<std::string, json>& found);
+  void publish(const std::string& uri, json diagnostics);
+  void clear(const std::string& key);  // publishes no findings for every file of the machine, and forgets it
+
+  std::function<void(json)> send_;
+  std::function<void(int, const std::string&)> log_;
+  std::string shown_;                             // the last configuration error shown to the user
+  cli::CliOptions cli_;                           // the defaults: settings come from .rrflint.toml alone
+  std::map<std::string, Document> docs_;          // by URI as the client sent it
+  std::map<std::string, MachineEntry> machines_;  // by key: the card's sys folder, or "lone:" + URI
+};
+
+}  // namespace rrflint::server
