@@ -5,11 +5,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "lint/engine/linter.h"
+#include "lint/render/model_render.h"
 #include "rules/registry.h"
 
 using namespace rrflint;
@@ -250,4 +253,26 @@ TEST_CASE("model: steps/mm and microstepping, with M350's rescaling", "[model]")
   CHECK(config("M350 X12\n")->end().axes[0].drive.microsteps.value == 16);
   // An axis created later starts from the defaults.
   CHECK(config("M92 X100\nM584 U3\n")->end().axes[3].drive.steps.value == 80);
+}
+
+TEST_CASE("model: rrflint model prints the new facts, text and JSON", "[model]") {
+  auto r = config("M584 X0.0 Y0.1 E0.1\nM350 X32 I1\nM671 X0:1 Y0:1\nM669 K1\n" + kBed +
+                  "M140 H0\nM301 H0 P10 I1 D2\nM950 J0 C\"io0.in\"\nM581 T2 P0\nM591 D0 P1 C\"e0stop\"\n");
+  std::ostringstream text;
+  render_model_text(text, r->sources, r->result, "m");
+  for (const char* part : {"Drivers", "SHARED", "rescaled sys/config.g:2", "Heater monitors (M143)", "P10 I1 D2",
+                           "J0    GPIO in", "sys/trigger2.g", "\"e0stop\"", "DROPPED by the kinematics change"})
+    CHECK(text.str().find(part) != std::string::npos);
+  std::ostringstream js;
+  render_model_json(js, r->sources, r->result, "m");
+  const auto j = nlohmann::json::parse(js.str());
+  CHECK(j["axes"][0]["steps_per_mm"] == 160.0);
+  CHECK(j["axes"][0]["letter"] == "X");  // the fields that were there stay
+  CHECK(j["heaters"][0]["monitors"][0]["limit"] == 125.0);
+  CHECK(j["heaters"][0]["limit"] == 125.0);
+  CHECK(j["drivers"][1]["shared"] == true);
+  CHECK(j["ports"][0]["used_at"][0] == "sys/config.g:10");  // the M581
+  CHECK(j["kinematics"]["leadscrews"]["dropped_at"] == "sys/config.g:4");
+  CHECK(j["filament_monitors"][0]["pin"] == "e0stop");
+  CHECK(j["extruders"]["drives"][0]["steps_per_mm"] == 420.0);
 }
