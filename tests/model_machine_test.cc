@@ -76,6 +76,8 @@ TEST_CASE("model: heater monitor slots follow Heater::ConfigureMonitor", "[model
   auto re = config(kBed + "M143 H0 P1 S120\nM950 H0 C\"bedheat\" T0\n");
   CHECK(re->end().heaters.at(0).monitors[1].condition.value == -1);
   CHECK(re->end().heaters.at(0).monitors[1].set == kNoNode);
+  // A limit of 2000 or more is invalid: the slot keeps its old values.
+  CHECK(config(kBed + "M140 H0\nM143 H0 S2000\n")->end().heaters.at(0).monitors[0].limit.value == 125);
   // A tool heater gets the hot-end default from M563.
   auto tool = config(kBed + "M563 P0 H0\n");
   CHECK(tool->end().heaters.at(0).monitors[0].limit.value == 285);
@@ -118,8 +120,9 @@ TEST_CASE("model: fan thermostats (M106 H sensors, T threshold)", "[model]") {
   CHECK_FALSE(config(fan + "M106 P1 H1 T50\nM106 P1 H-1\n")->end().fans.at(1).thermostatic);
   CHECK_FALSE(config(fan + "M106 P1 H{move.axes[0].max}\n")->end().fans.at(1).thermostat_known);
   CHECK_FALSE(config(fan + kUnknownIf + "  M106 P1 H1\nendif\n")->end().fans.at(1).thermostat_known);
-  CHECK_FALSE(config(fan + "M106 P1 H1\n" + fan)->end().fans.at(1).thermostatic);  // re-created
-  CHECK(config("M106 P3 H1\n")->end().fans.empty());                               // Fan number 3 not found
+  CHECK_FALSE(config(fan + "M106 P1 H1\n" + fan)->end().fans.at(1).thermostatic);          // re-created
+  CHECK(config("M106 P3 H1\n")->end().fans.empty());                                       // Fan number 3 not found
+  CHECK_FALSE(config("M950 F0 C\"fan0\"\nM106 H1 T50\n")->end().fans.at(0).thermostatic);  // no P: no fan named
 }
 
 TEST_CASE("model: M950 ports and the commands that use them", "[model]") {
@@ -275,4 +278,19 @@ TEST_CASE("model: rrflint model prints the new facts, text and JSON", "[model]")
   CHECK(j["kinematics"]["leadscrews"]["dropped_at"] == "sys/config.g:4");
   CHECK(j["filament_monitors"][0]["pin"] == "e0stop");
   CHECK(j["extruders"]["drives"][0]["steps_per_mm"] == 420.0);
+}
+
+TEST_CASE("model: M574 endstops per axis", "[model]") {
+  auto r = config("M574 X1 S1 P\"xstop\"\nM574 Y2 P\"ystop\"\nM574 Y1\nM574 Z1 S2\n");
+  const MachineState& s = r->end();
+  CHECK(s.axes[0].endstop.pins == "xstop");
+  CHECK(s.axes[1].endstop.position.value == 1);  // a switch without P keeps its pins
+  CHECK(s.axes[1].endstop.pins == "ystop");
+  CHECK(s.axes[2].endstop.type.value == 2);  // the Z probe
+  CHECK(s.axes[2].endstop.pins.empty());
+  CHECK(r->word(s.axes[1].endstop.set) == "M574 Y1");
+  CHECK(config("M574 X1 P\"xstop\"\nM574 X0\n")->end().axes[0].endstop.pins.empty());
+  CHECK(config("M574 X1 P{global.pin}\n")->end().axes[0].endstop.pins == "?");
+  CHECK_FALSE(config("M574 X{move.axes[0].max} P\"x\"\n")->end().axes[0].endstop.position.known);
+  CHECK(config(kUnknownIf + "  M574 X1 P\"x\"\nendif\n")->end().axes[0].endstop.maybe);
 }

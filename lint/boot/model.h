@@ -45,7 +45,7 @@ struct Axis {
   bool maybe = false;  // created inside a conditional block
   bool rotational = false;
   DriveSettings drive;
-  /// M574: endstop position (S-less: X1 low end, X2 high end, 0 none), type S, pins P (as written).
+  /// M574: endstop position (X1 low end, X2 high end, X0 none), type S (omitted: 1, a switch), pins P as written.
   struct Endstop {
     Fact position{0}, type{1};
     std::string pins;  // "" when none was given; "?" when it is an expression

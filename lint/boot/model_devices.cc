@@ -48,7 +48,8 @@ void monitor_slots(CommandCx& x) {
   const bool any = x.pf.find(x.c, 'T') || x.pf.find(x.c, 'S') || x.pf.find(x.c, 'A') || x.pf.find(x.c, 'C');
   if (!any) return;  // a report
   auto P = get_int(x.pf, x.c, 'P');
-  if (P.known() && (P.value < 0 || P.value > 2)) return;  // parameter 'P' too high
+  if (P.known() && (P.value < 0 || P.value > 2)) return;                         // parameter 'P' too high
+  if (auto S = get_float(x.pf, x.c, 'S'); S.known() && S.value >= 2000) return;  // BadErrorTemperature: invalid
   auto set_slot = [&](MonitorSlot& m, bool unsure) {
     CommandCx y{x.s, x.pf, x.c, x.id, x.maybe || unsure};
     const auto fixed = [&](double v) { return Fact{v, !y.maybe, x.id}; };
@@ -87,8 +88,8 @@ void fault_detection(CommandCx& x) {
 // M106 P<fan> H<sensors> T<threshold[:high]>: H-1 (or any negative number) turns the thermostat off.
 void fan_thermostat(CommandCx& x) {
   auto P = get_int(x.pf, x.c, 'P');
-  if (P.unknown()) return;
-  auto it = x.s.fans.find(P.known() ? static_cast<int>(P.value) : 0);
+  if (!P.known()) return;  // without P: the current tool's print cooling fan, no thermostat
+  auto it = x.s.fans.find(static_cast<int>(P.value));
   if (it == x.s.fans.end()) return;  // Fan number n not found
   Fan& f = it->second;
   auto H = get_int_list(x.pf, x.c, 'H');

@@ -101,15 +101,17 @@ void m350(CommandCx& x) {
   }
 }
 
-// M574 X1 S1 P"xstop": the axes named get an endstop position, type and pins.
+// M574 X1 S1 P"xstop" (EndstopsManager::HandleM574): the axes named get an endstop position and type (S omitted:
+// 1, a switch); P gives the pins, a switch without P keeps the old ones, position 0 or another type drops them.
 void m574(CommandCx& x) {
   auto P = get_string(x.pf, x.c, 'P');
   for (Axis& a : x.s.axes) {
     if (!x.pf.find(x.c, a.letter)) continue;
     Axis::Endstop& e = a.endstop;
     read_fact(x, a.letter, e.position);
-    read_fact(x, 'S', e.type);
+    if (!read_fact(x, 'S', e.type)) e.type = Fact{1, !x.maybe, x.id};
     if (P.present()) e.pins = P.known() ? P.value : "?";
+    else if ((e.position.known && e.position.value == 0) || (e.type.known && e.type.value != 1)) e.pins.clear();
     e.set = x.id;
     e.maybe = x.maybe;
   }

@@ -97,6 +97,17 @@ std::string drive_name(const DriverUse& u, const MachineState& s) {
   return u.extruder ? fmt::format("E{}", u.index) : axis_name(s.axes[static_cast<size_t>(u.index)]);
 }
 
+/// The extruders to list: those that exist, or with their count unknown, those some command set.
+int listed_extruders(const MachineState& s) {
+  if (s.extruders_known) return std::min(s.extruders, kMaxAxisSlots);
+  int n = 0;
+  for (int e = 0; e < kMaxAxisSlots; ++e) {
+    const DriveSettings& d = s.extruder_drive[static_cast<size_t>(e)];
+    if (d.steps.origin != kNoNode || d.microsteps.origin != kNoNode) n = e + 1;
+  }
+  return n;
+}
+
 std::string trigger_action(int n) {
   return n == 0 ? "emergency stop" : n == 1 ? "pause" : fmt::format("sys/trigger{}.g", n);
 }
@@ -152,12 +163,11 @@ void render_drives(std::ostream& os, const SourceManager& sm, const MachineResul
     std::string steps = where(r, sm, d.steps.origin);
     if (d.steps_rescaled != kNoNode) steps += ", rescaled " + where(r, sm, d.steps_rescaled);
     std::string interp = d.interpolation_known ? (d.interpolation ? " I1" : " I0") : " I?";
-    rows.push_back({name, fact(d.steps), "x" + fact(d.microsteps) + interp, steps, where(r, sm, d.microsteps.origin)});
+    rows.push_back({name, fact(d.steps), (d.microsteps.known ? "x" + num(d.microsteps.value) : "unknown") + interp,
+                    steps, where(r, sm, d.microsteps.origin)});
   };
   for (const Axis& a : s.axes) add(axis_name(a), a.drive);
-  const int extruders = s.extruders_known ? s.extruders : 0;
-  for (int e = 0; e < extruders && e < kMaxAxisSlots; ++e)
-    add(fmt::format("E{}", e), s.extruder_drive[static_cast<size_t>(e)]);
+  for (int e = 0; e < listed_extruders(s); ++e) add(fmt::format("E{}", e), s.extruder_drive[static_cast<size_t>(e)]);
   table(os, rows);
   os << "\nEndstops (M574)\n";
   rows = {{"axis", "position", "type", "pins", "set at"}};
@@ -311,7 +321,7 @@ void machine_json(json& j, const SourceManager& sm, const MachineResult& r) {
   const MachineState& s = r.end_of_boot;
   auto at = [&](NodeId id) { return at_json(r, sm, id); };
   json drives = json::array();
-  for (int e = 0; e < (s.extruders_known ? s.extruders : 0) && e < kMaxAxisSlots; ++e) {
+  for (int e = 0; e < listed_extruders(s); ++e) {
     drives.push_back(drive_json(sm, r, s.extruder_drive[static_cast<size_t>(e)]));
     drives.back()["extruder"] = e;
   }
