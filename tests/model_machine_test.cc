@@ -78,6 +78,10 @@ TEST_CASE("model: heater monitor slots follow Heater::ConfigureMonitor", "[model
   CHECK(re->end().heaters.at(0).monitors[1].set == kNoNode);
   // A limit of 2000 or more is invalid: the slot keeps its old values.
   CHECK(config(kBed + "M140 H0\nM143 H0 S2000\n")->end().heaters.at(0).monitors[0].limit.value == 125);
+  // An M143 with only A marks the monitors as the user's: a later M140 installs no default.
+  auto user = config(kBed + "M143 H0 P1 A2\nM140 H0\n");
+  CHECK(user->end().heaters.at(0).monitors[0].condition.value == -1);
+  CHECK(user->end().heaters.at(0).default_monitor == kNoNode);
   // A tool heater gets the hot-end default from M563.
   auto tool = config(kBed + "M563 P0 H0\n");
   CHECK(tool->end().heaters.at(0).monitors[0].limit.value == 285);

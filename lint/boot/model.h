@@ -99,6 +99,7 @@ struct Heater {
   /// Each monitor slot in full (M143 P0–P2), RRF's reading; `monitor_limits` above stays the rules' view.
   std::array<MonitorSlot, 3> monitors{};
   NodeId default_monitor = kNoNode;  // the M563/M140/M141 that installed the default monitor, if any
+  bool slots_set_by_user = false;    // an M143 set a slot (any of T S A C): no default monitor from then on
   bool default_monitor_maybe = false;
   Pid pid;
   FaultDetection fault;

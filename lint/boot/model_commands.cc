@@ -26,21 +26,23 @@ void update_limit(Heater& h) {
 
 void install_tool_heater_defaults(MachineState& s, int h, NodeId id, bool maybe) {
   auto it = s.heaters.find(h);
-  if (it == s.heaters.end() || it->second.user_monitor) return;
+  if (it == s.heaters.end()) return;
   const double limit = s.firmware < kRrf3_1 ? 290.0 : kToolHeaterLimit;
+  install_default_monitor(it->second, limit, id, maybe);
+  if (it->second.user_monitor) return;
   it->second.monitor_limits[0] = limit;
   update_limit(it->second);
   it->second.monitor_origin = id;
-  install_default_monitor(it->second, limit, id, maybe);
 }
 
 void install_bed_heater_defaults(MachineState& s, int h, NodeId id, bool maybe) {
   auto it = s.heaters.find(h);
-  if (it == s.heaters.end() || it->second.user_monitor) return;
+  if (it == s.heaters.end()) return;
+  install_default_monitor(it->second, kBedHeaterLimit, id, maybe);
+  if (it->second.user_monitor) return;
   it->second.monitor_limits[0] = kBedHeaterLimit;
   update_limit(it->second);
   it->second.monitor_origin = id;
-  install_default_monitor(it->second, kBedHeaterLimit, id, maybe);
 }
 
 void do_m584(Cx& x) {

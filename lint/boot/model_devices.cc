@@ -17,6 +17,7 @@ bool read_fact(CommandCx& x, char letter, Fact& f) {
 }
 
 void install_default_monitor(Heater& h, double limit, NodeId id, bool maybe) {
+  if (h.slots_set_by_user) return;  // monitorsSetByUser
   MonitorSlot& m = h.monitors[0];
   m = MonitorSlot{};
   m.limit = Fact{limit, !maybe, id};
@@ -60,6 +61,7 @@ void monitor_slots(CommandCx& x) {
     m.set = x.id;
     m.maybe = x.maybe;
   };
+  if (!x.maybe) h->slots_set_by_user = true;  // (inside an `if`, a later default may or may not be installed)
   if (P.known()) set_slot(h->monitors[static_cast<size_t>(P.value)], false);
   else
     for (MonitorSlot& m : h->monitors) set_slot(m, true);  // P from an expression: any slot may have changed
