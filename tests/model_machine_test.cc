@@ -76,6 +76,10 @@ TEST_CASE("model: heater monitor slots follow Heater::ConfigureMonitor", "[model
   auto re = config(kBed + "M143 H0 P1 S120\nM950 H0 C\"bedheat\" T0\n");
   CHECK(re->end().heaters.at(0).monitors[1].condition.value == -1);
   CHECK(re->end().heaters.at(0).monitors[1].set == kNoNode);
+  // No P: slot 0 only.
+  auto p0 = config(kBed + "M143 H0 S150\n");
+  CHECK(p0->end().heaters.at(0).monitors[0].limit.value == 150);
+  CHECK(p0->end().heaters.at(0).monitors[1].set == kNoNode);
   // A limit of 2000 or more is invalid: the slot keeps its old values.
   CHECK(config(kBed + "M140 H0\nM143 H0 S2000\n")->end().heaters.at(0).monitors[0].limit.value == 125);
   // An M143 with only A marks the monitors as the user's: a later M140 installs no default.

@@ -62,7 +62,7 @@ void monitor_slots(CommandCx& x) {
     m.maybe = x.maybe;
   };
   if (!x.maybe) h->slots_set_by_user = true;  // (inside an `if`, a later default may or may not be installed)
-  if (P.known()) set_slot(h->monitors[static_cast<size_t>(P.value)], false);
+  if (P.known() || P.absent()) set_slot(h->monitors[static_cast<size_t>(P.known() ? P.value : 0)], false);
   else
     for (MonitorSlot& m : h->monitors) set_slot(m, true);  // P from an expression: any slot may have changed
 }
@@ -208,7 +208,7 @@ void filament_monitor(CommandCx& x) {
 // G31 K<probe> Z<trigger height> X Y<offsets>: the probe must exist (`invalid Z probe index`).
 void g31(CommandCx& x) {
   auto K = get_int(x.pf, x.c, 'K');
-  if (K.unknown()) return;
+  if (!K.known() && !K.absent()) return;
   auto it = x.s.probes.find(K.known() ? static_cast<int>(K.value) : 0);
   if (it == x.s.probes.end()) return;
   Probe& p = it->second;
