@@ -42,6 +42,8 @@ MachineState ModelBuilder::initial_state() const {
     s.axes.push_back(a);
   }
   s.visible_axes = 3;
+  s.axes[2].drive.steps.value = fw_ >= kRrf3_5 ? 800 : 4000;  // DefaultZDriveStepsPerUnit
+  for (DriveSettings& d : s.extruder_drive) d.steps.value = 420;
   if (fw_ < kRrf3_0) {
     // RRF 2 has default extruders, heaters and fans; what exists depends on the board.
     s.extruders_known = false;

@@ -26,6 +26,17 @@ struct Fact {
   NodeId origin = kNoNode;  // kNoNode: the power-on default
 };
 
+/// Steps/mm and microstepping of one axis or extruder drive (M92, M350). Steps/mm: RRF's defaults 80 (axes),
+/// Z 800 (3.5+; 4000 before), E 420; microstepping x16 with interpolation (Move.cpp).
+struct DriveSettings {
+  Fact steps{80};
+  Fact microsteps{16};
+  bool interpolation = true;
+  bool interpolation_known = true;
+  NodeId interpolation_set = kNoNode;
+  NodeId steps_rescaled = kNoNode;  // the last M350 that rescaled `steps` (new/old microstepping)
+};
+
 struct Axis {
   char letter = 'X';  // 'X'…'D' or lowercase 'a'…'z'
   std::vector<DriverId> drivers;
@@ -33,12 +44,43 @@ struct Axis {
   NodeId drivers_set = kNoNode;
   bool maybe = false;  // created inside a conditional block
   bool rotational = false;
+  DriveSettings drive;
+  /// M574: endstop position (X1 low end, X2 high end, X0 none), type S (omitted: 1, a switch), pins P as written.
+  struct Endstop {
+    Fact position{0}, type{1};
+    std::string pins;  // "" when none was given; "?" when it is an expression
+    NodeId set = kNoNode;
+    bool maybe = false;
+  } endstop;
 };
 
 struct Sensor {
   NodeId created = kNoNode;
   std::string type;
   bool maybe = false;
+};
+
+/// One over-temperature monitor slot (M143 P0–P2) as Heater::ConfigureMonitor sets it: a slot nobody set is
+/// disabled (condition -1, sensor -1). Omitted parameters: sensor = the heater's sensor, limit = the slot's old
+/// limit, action 0 (fault), condition 0 (temperature exceeded).
+struct MonitorSlot {
+  Fact limit{0, false};  // a slot never set has no limit
+  Fact action{0}, condition{-1}, sensor{-1};
+  NodeId set = kNoNode;  // the M143 (or the M563/M140/M141 default) that set it
+  bool maybe = false;    // set inside a conditional block
+};
+
+/// M570 heater fault detection: fault time P (s), excursion T (°C), bad readings R; S as written (3.5 reads no S).
+struct FaultDetection {
+  Fact time{5}, excursion{15}, bad_readings{3};
+  Fact timeout{0, false};  // M570 S: not given
+  NodeId set = kNoNode;
+};
+
+/// M301 PID values (P, I, D); unknown until an M301 sets them.
+struct Pid {
+  Fact p{0, false}, i{0, false}, d{0, false};
+  NodeId set = kNoNode;
 };
 
 struct Heater {
@@ -54,17 +96,85 @@ struct Heater {
   /// Over-temperature limit of each monitor (M143 P0–P2); -1 where that monitor is disabled or checks
   /// something else (C1, C-1). `limit` is the highest of these, or 2000 when there is none.
   std::array<double, 3> monitor_limits{-1, -1, -1};
+  /// Each monitor slot in full (M143 P0–P2), RRF's reading; `monitor_limits` above stays the rules' view.
+  std::array<MonitorSlot, 3> monitors{};
+  NodeId default_monitor = kNoNode;  // the M563/M140/M141 that installed the default monitor, if any
+  bool slots_set_by_user = false;    // an M143 set a slot (any of T S A C): no default monitor from then on
+  bool default_monitor_maybe = false;
+  Pid pid;
+  FaultDetection fault;
 };
 
 struct Fan {
   NodeId created = kNoNode;
   bool maybe = false;
+  /// M106 H (RRF 3: sensor numbers) and T (threshold, or low:high): thermostatic when H names a sensor.
+  std::vector<int64_t> sensors;
+  std::vector<double> thresholds{45};  // DefaultHotEndFanTemperature
+  bool thermostatic = false;
+  bool thermostat_known = true;  // false after an M106 H/T from an expression or inside an `if`
+  NodeId thermostat_set = kNoNode;
 };
 
 struct Probe {
   NodeId created = kNoNode;
   int type = -1;
   bool maybe = false;
+  /// G31: trigger height Z and offsets X Y (ZProbe::SetDefaults: 0.7, 0, 0); M558 re-creation resets them.
+  Fact trigger_height{0.7}, x_offset{0}, y_offset{0};
+  NodeId g31 = kNoNode;
+};
+
+/// An M950 port that is not a heater or fan: GPIO in (J), GPIO out (P), servo (S), spindle (R, 3.3+).
+enum class PortKind : uint8_t { GpioIn, GpioOut, Servo, Spindle };
+struct Port {
+  std::string pin;  // as written; "?" for an expression
+  NodeId created = kNoNode;
+  bool maybe = false;
+};
+
+/// A command that uses a port or pin: M42 P / M280 P (GPIO out, servo), M581 P (GPIO in), M453 (spindle).
+struct PortUse {
+  PortKind kind = PortKind::GpioOut;
+  int port = -1;  // -1: unknown (an expression)
+  NodeId at = kNoNode;
+  bool maybe = false;
+};
+
+/// M581 T<n>: the GPIO-in ports (P, RRF 3) that run trigger n on a rising (S1, the default) or falling (S0) edge;
+/// S-1 removes the ports, P-1 clears them all (TriggerItem::Configure). T0 is the emergency stop, T1 a pause, the
+/// others run sys/trigger<n>.g.
+struct Trigger {
+  std::vector<int64_t> rising, falling;
+  bool ports_known = true;
+  Fact condition{0};  // R: 0 always, 1 only while printing, 2 only while not printing
+  NodeId set = kNoNode;
+  bool maybe = false;
+};
+
+/// M591 D<extruder>: a filament monitor of type P on pin C.
+struct FilamentMonitor {
+  Fact type{0};
+  std::string pin;  // as written; "?" for an expression
+  NodeId created = kNoNode;
+  bool maybe = false;
+};
+
+/// M671 leadscrew positions (X, Y lists) and the kinematics change that dropped them (Move::SetKinematics).
+struct Leadscrews {
+  std::vector<double> x, y;
+  bool known = true;
+  NodeId set = kNoNode;      // kNoNode: never set
+  NodeId dropped = kNoNode;  // a later M669/M667/M665 that changed (or may have changed) the kinematics type
+  bool dropped_maybe = false;
+};
+
+/// One drive's use of a driver (the drivers table): axis index or extruder number.
+struct DriverUse {
+  DriverId driver;
+  bool extruder = false;
+  int index = 0;
+  bool local() const { return driver.board == 0; }  // board 0: the main board; > 0: a CAN expansion board
 };
 
 /// A set of physical axis indices (bit i = axis index i) that may be unknown.
@@ -111,6 +221,7 @@ struct MachineState {
   std::vector<DriverId> extruder_drivers;
   NodeId extruders_set = kNoNode;
   bool extruders_known = true;
+  std::array<DriveSettings, kMaxAxisSlots> extruder_drive{};  // M92 / M350 E values, by extruder number
 
   std::map<int, Sensor> sensors;
   std::map<int, Heater> heaters;
@@ -137,6 +248,17 @@ struct MachineState {
   int kinematics = 0;  // M669 K value (0 Cartesian)
   NodeId kinematics_set = kNoNode;
   bool kinematics_known = true;  // false after an M669 K{…}, M667 S{…} or one inside a conditional block
+  /// Numeric parameters of the M669/M667/M665 that configured the current kinematics ("M665 R" → Fact); a type
+  /// change starts a new kinematics object and drops them.
+  std::map<std::string, Fact> kinematics_params;
+  Leadscrews leadscrews;
+
+  std::map<int, Port> ports[4];  // by PortKind
+  bool ports_known = true;       // false after an M950 J/P/S/R with an unknown number
+  std::vector<PortUse> port_uses;
+  std::map<int, Trigger> triggers;
+  std::map<int, FilamentMonitor> filament_monitors;  // by extruder
+  bool filament_monitors_known = true;
   MachineMode mode = MachineMode::FFF;
   NodeId mode_set = kNoNode;
 
@@ -150,6 +272,10 @@ struct MachineState {
   /// Is tool n known not to exist? (False when it may exist because of unknown facts.)
   bool tool_certainly_absent(int n) const { return tools_known && !unknown_baseline && !tools.count(n); }
   std::string axis_letters(uint32_t bits) const;  // "U", "X+U"
+  /// Every driver the axes and extruders use, in axis then extruder order (empty for an unknown list).
+  std::vector<DriverUse> driver_uses() const;
+  /// Is this driver used by more than one axis or extruder?
+  bool driver_shared(DriverId d) const;
 };
 
 /// Letters of axes in RRF's creation order for one M584 (docs/firmware-behaviour.md#axes-and-m584).
@@ -181,7 +307,7 @@ class ModelBuilder {
   /// Can a command of this code change the state? Most cannot (moves, settings): step() does nothing for them,
   /// and the forward pass need not call it.
   static bool changes_state(const CommandTable::Code& c) {
-    return (c.letter == 'M' && c.fraction < 0) || c.is('G', 10);
+    return (c.letter == 'M' && c.fraction < 0) || c.is('G', 10) || c.is('G', 31);
   }
 
  private:

@@ -14,13 +14,7 @@ constexpr std::string_view kAxisOrder = "XYZUVWABCDabcdefghijklmnopqrstuvwxyz";
 constexpr double kToolHeaterLimit = 285.0;  // DefaultHotEndTemperatureLimit (3.1+); 290 in 3.0
 constexpr double kBedHeaterLimit = 125.0;
 
-struct Cx {
-  MachineState& s;
-  const ParsedFile& pf;
-  const Command& c;
-  NodeId id;
-  bool maybe;
-};
+using Cx = CommandCx;
 
 /// limit = the highest over-temperature monitor (Heater::GetHighestTemperatureLimit), 2000 with none.
 void update_limit(Heater& h) {
@@ -30,17 +24,22 @@ void update_limit(Heater& h) {
   h.limit = hi >= 0 ? hi : 2000;
 }
 
-void install_tool_heater_defaults(MachineState& s, int h, NodeId id) {
+void install_tool_heater_defaults(MachineState& s, int h, NodeId id, bool maybe) {
   auto it = s.heaters.find(h);
-  if (it == s.heaters.end() || it->second.user_monitor) return;
-  it->second.monitor_limits[0] = s.firmware < kRrf3_1 ? 290.0 : kToolHeaterLimit;
+  if (it == s.heaters.end()) return;
+  const double limit = s.firmware < kRrf3_1 ? 290.0 : kToolHeaterLimit;
+  install_default_monitor(it->second, limit, id, maybe);
+  if (it->second.user_monitor) return;
+  it->second.monitor_limits[0] = limit;
   update_limit(it->second);
   it->second.monitor_origin = id;
 }
 
-void install_bed_heater_defaults(MachineState& s, int h, NodeId id) {
+void install_bed_heater_defaults(MachineState& s, int h, NodeId id, bool maybe) {
   auto it = s.heaters.find(h);
-  if (it == s.heaters.end() || it->second.user_monitor) return;
+  if (it == s.heaters.end()) return;
+  install_default_monitor(it->second, kBedHeaterLimit, id, maybe);
+  if (it->second.user_monitor) return;
   it->second.monitor_limits[0] = kBedHeaterLimit;
   update_limit(it->second);
   it->second.monitor_origin = id;
@@ -184,7 +183,7 @@ void do_m563(Cx& x) {
     return;
   }
   s.failed_tools.erase(n);
-  for (int64_t h : t.heaters) install_tool_heater_defaults(s, static_cast<int>(h), x.id);
+  for (int64_t h : t.heaters) install_tool_heater_defaults(s, static_cast<int>(h), x.id, x.maybe);
   if (x.maybe && s.tools.count(n)) t.maybe = true;
   s.tools[n] = std::move(t);
 }
@@ -336,7 +335,7 @@ void do_m140(Cx& x, bool bed) {
   for (int64_t h : H.value) {
     if (h < 0) continue;
     if (bed && h == H.value.front()) x.s.bed_heater = static_cast<int>(h);
-    install_bed_heater_defaults(x.s, static_cast<int>(h), x.id);
+    install_bed_heater_defaults(x.s, static_cast<int>(h), x.id, x.maybe);
   }
 }
 
@@ -412,7 +411,12 @@ std::string_view allowed_axis_letters() { return kAxisOrder; }
 
 void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, NodeId id, bool maybe) {
   Cx x{s, pf, c, id, maybe};
-  if (c.letter == 'G') return do_g10(x);
+  if (c.letter == 'G') {
+    if (c.number == 31) return interpret_device_command(x);
+    return do_g10(x);
+  }
+  interpret_device_command(x);
+  interpret_motion_command(x);
   switch (c.number) {
     case 584: do_m584(x); break;
     case 563: do_m563(x); break;
@@ -440,6 +444,7 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
       if (P && is_unknown_string(*P)) {
         s.tools_known = s.axes_known = s.heaters_known = s.fans_known = s.sensors_known = s.probes_known = false;
         s.extruders_known = false;
+        s.ports_known = s.filament_monitors_known = false;
       }
       break;
     }

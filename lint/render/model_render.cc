@@ -5,32 +5,13 @@
 
 #include "lint/engine/linter.h"
 #include "lint/render/model_render.h"
+#include "lint/render/model_tables.h"
 #include "lint/render/render.h"
 
 namespace rrflint {
 namespace {
 
-std::string where(const MachineResult& r, const SourceManager& sm, NodeId id) {
-  if (id == kNoNode) return "default";
-  const Graph& g = r.graph;
-  Node node = g.nodes[id];
-  while (node.kind != NodeKind::Command && node.call_site != kNoNode) node = g.nodes[node.call_site];
-  const Node* n = &node;
-  const FileUnit& u = r.machine->unit(n->unit);
-  uint32_t off = n->kind == NodeKind::Command ? u.parsed.commands[n->index].span.begin : 0;
-  LineCol lc = sm.get(u.source->id()).position(off);
-  return fmt::format("{}:{}", sanitize(u.source->display_path()), lc.line);
-}
-
-std::string num(double v) {
-  std::string s = fmt::format("{:.3f}", v);
-  while (s.size() > 1 && s.back() == '0') s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  if (s == "-0") s = "0";
-  return s;
-}
-
-std::string fact(const Fact& f) { return f.known ? num(f.value) : "unknown"; }
+using namespace model_text;
 
 std::string ints(const std::vector<int64_t>& v) {
   std::string s;
@@ -49,22 +30,6 @@ std::string map_str(const MachineState& s, const AxisMap& m) { return m.known ? 
 
 std::string axis_name(const Axis& a) {
   return a.letter >= 'a' ? fmt::format("'{}", a.letter) : std::string(1, a.letter);
-}
-
-void table(std::ostream& os, const std::vector<std::vector<std::string>>& rows) {
-  if (rows.empty()) return;
-  std::vector<size_t> w(rows[0].size(), 0);
-  for (const auto& r : rows)
-    for (size_t i = 0; i < r.size(); ++i) w[i] = std::max<size_t>(w[i], count_code_points(r[i]));
-  for (const auto& r : rows) {
-    std::string line = "  ";
-    for (size_t i = 0; i < r.size(); ++i) {
-      line += r[i];
-      if (i + 1 < r.size()) line += std::string(w[i] - count_code_points(r[i]) + 2, ' ');
-    }
-    while (!line.empty() && line.back() == ' ') line.pop_back();
-    os << line << "\n";
-  }
 }
 
 // The target, its evidence and the board.
@@ -124,15 +89,21 @@ void render_devices(std::ostream& os, const SourceManager& sm, const MachineResu
   if (rows.size() > 1) table(os, rows);
   else os << "  none\n";
   os << "\nFans\n";
-  rows = {{"fan", "created at"}};
-  for (const auto& [n, f] : s.fans)
-    rows.push_back({std::to_string(n), where(r, sm, f.created) + (f.maybe ? " (maybe)" : "")});
+  rows = {{"fan", "thermostatic", "created at"}};
+  for (const auto& [n, f] : s.fans) {
+    std::string th = !f.thermostat_known ? "unknown" : f.thermostatic ? "sensors " + ints(f.sensors) : "no";
+    if (f.thermostat_known && f.thermostatic) th += " at " + temps(f.thresholds) + " °C";
+    if (f.thermostat_set != kNoNode) th += " (" + where(r, sm, f.thermostat_set) + ")";
+    rows.push_back({std::to_string(n), th, where(r, sm, f.created) + (f.maybe ? " (maybe)" : "")});
+  }
   if (rows.size() > 1) table(os, rows);
   else os << "  none\n";
   os << "\nProbes\n";
-  rows = {{"probe", "type", "created at"}};
+  rows = {{"probe", "type", "trigger height", "offsets", "created at"}};
   for (const auto& [n, p] : s.probes)
-    rows.push_back({std::to_string(n), std::to_string(p.type), where(r, sm, p.created)});
+    rows.push_back({std::to_string(n), std::to_string(p.type),
+                    fact(p.trigger_height) + (p.g31 != kNoNode ? " (" + where(r, sm, p.g31) + ")" : " (default)"),
+                    "X" + fact(p.x_offset) + " Y" + fact(p.y_offset), where(r, sm, p.created)});
   if (rows.size() > 1) table(os, rows);
   else os << "  none\n";
 }
@@ -199,18 +170,18 @@ void render_model_text(std::ostream& os, const SourceManager& sm, const MachineR
   os << "Machine: " << title << "\n";
   render_target(os, sm, r);
   render_axes(os, sm, r, s);
+  render_drives(os, sm, r);
   render_devices(os, sm, r, s);
+  render_heater_settings(os, sm, r);
+  render_ports(os, sm, r);
   render_tools(os, sm, r, s);
   render_workplaces(os, sm, r, s);
+  render_kinematics(os, sm, r);
 }
 
 namespace {
 
-nlohmann::json at_json(const MachineResult& r, const SourceManager& sm, NodeId id) {
-  return id == kNoNode ? nlohmann::json(nullptr) : nlohmann::json(where(r, sm, id));
-}
-
-nlohmann::json fact_json(const Fact& f) { return f.known ? nlohmann::json(f.value) : nlohmann::json("unknown"); }
+using namespace model_text;
 
 nlohmann::json tools_json(const MachineResult& r, const SourceManager& sm) {
   using nlohmann::json;
@@ -284,6 +255,7 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
                     {"rotational", a.rotational},
                     {"maybe", a.maybe},
                     {"set_at", at(a.drivers_set != kNoNode ? a.drivers_set : a.created)}});
+    axis_json(axes.back(), sm, r, a);
   }
   j["axes"] = axes;
   json ex = json::array();
@@ -300,21 +272,29 @@ void render_model_json(std::ostream& os, const SourceManager& sm, const MachineR
                        {"user_monitor", h.user_monitor},
                        {"bed", n == s.bed_heater},
                        {"created_at", at(h.created)}});
+  for (size_t i = 0; const auto& [n, h] : s.heaters) heater_json(heaters[i++], sm, r, h);
   j["heaters"] = heaters;
   json sensors = json::array();
   for (const auto& [n, sn] : s.sensors)
     sensors.push_back({{"sensor", n}, {"type", sanitize(sn.type)}, {"created_at", at(sn.created)}});
   j["sensors"] = sensors;
   json fans = json::array();
-  for (const auto& [n, f] : s.fans) fans.push_back({{"fan", n}, {"created_at", at(f.created)}});
+  for (const auto& [n, f] : s.fans) {
+    fans.push_back({{"fan", n}, {"created_at", at(f.created)}});
+    fan_json(fans.back(), sm, r, f);
+  }
   j["fans"] = fans;
   json probes = json::array();
-  for (const auto& [n, p] : s.probes) probes.push_back({{"probe", n}, {"type", p.type}, {"created_at", at(p.created)}});
+  for (const auto& [n, p] : s.probes) {
+    probes.push_back({{"probe", n}, {"type", p.type}, {"created_at", at(p.created)}});
+    probe_json(probes.back(), sm, r, p);
+  }
   j["probes"] = probes;
   j["tools"] = tools_json(r, sm);
   j["current_tool"] = s.current_tool_known ? json(s.current_tool) : json("unknown");
   j["workplaces"] = workplaces_json(s);
   j["m501_at"] = at(s.m501);
+  machine_json(j, sm, r);
   os << j.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
 }
 
