@@ -146,9 +146,12 @@ bool judged_elsewhere(const NodeContext& cx, NodeId id) {
 /// The last earlier M143 in this segment that set slot `m.slot` of heater `m.heater`, with what it set in `old`;
 /// kNoNode when there is none, or when something between may have changed the heater's monitors (an M950,
 /// M563, M140 or M141 for it, an M143 from unknown values, one that may not run).
-NodeId earlier_m143(const NodeContext& cx, const Monitor& m, int own_sensor, Monitor& old) {
+NodeId earlier_m143(const NodeContext& cx, const Monitor& m, int own_sensor, NodeId created, Monitor& old) {
   NodeId found = kNoNode;
-  cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId id, const Node& n) {
+  // Only what ran since the heater was created counts: the walk starts there (not at the start of the boot, which
+  // made a file of many heaters and monitors quadratic).
+  const NodeId from = created == kNoNode ? cx.segment().begin : std::max(cx.segment().begin, created);
+  cx.graph.nodes.find_if(from, cx.id, [&](NodeId id, const Node& n) {
     const tools::NodeCommand k = tools::command_at(cx.machine, n);
     if (!k) return false;
     if (k.is('M', 950)) {
@@ -187,7 +190,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (m.kind != Monitor::Kind::Set) return;
   const Monitor* now = &m;
   Monitor old;
-  const NodeId prev = earlier_m143(cx, *now, own_sensor, old);
+  const NodeId prev = earlier_m143(cx, *now, own_sensor, it->second.created, old);
   if (prev == kNoNode || prev < it->second.created) return;
   std::vector<std::string> diffs = differences(old, *now);
   if (diffs.empty()) return;

@@ -89,17 +89,23 @@ void check(const NodeContext& cx, Sink& out) {
   if (!pf.find(c, 'X') && !pf.find(c, 'Y')) return;  // reports only
   int current = s.kinematics, to = -1;
   bool silent = false;
+  bool superseded = false;  // a later M671 sets the leadscrews again before any change: it is judged instead
   const NodeId change = cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
     if (n.kind != NodeKind::Command) return false;
     const ParsedFile& npf = cx.machine.unit(n.unit).parsed;
-    if (!is_kinematics_code(npf.commands.code(n.index))) return false;
+    const CommandTable::Code code = npf.commands.code(n.index);
+    if (code.is('M', 671) && !n.maybe) {
+      const Command nc = npf.commands[n.index];
+      if (npf.find(nc, 'X') || npf.find(nc, 'Y')) return superseded = true;
+    }
+    if (!is_kinematics_code(code)) return false;
     const std::optional<int> k = kinematics_set_by(npf, npf.commands[n.index], s.firmware);
     if (!k || *k == current) return false;
     if (*k < 0 || n.maybe) return silent = true;  // the type may change, or become anything
     to = *k;
     return true;
   });
-  if (change == kNoNode || silent || m671_later(cx, change)) return;
+  if (change == kNoNode || silent || superseded || m671_later(cx, change)) return;
   const tools::NodeCommand nc = tools::command_at(cx.machine, cx.graph, change);
   Report rep = out.report(
       kMeta, cx.at(c.span),

@@ -213,6 +213,26 @@ inline bool changes_mapping(const tools::NodeCommand& k, const DriveMap& at) {
   return false;
 }
 
+/// Where the walk for the M584 at `m` may start. When it creates no axis, only settings since the latest earlier
+/// M584 that names every letter it names can depend on it (that M584 cleared the older ones: see dependents()), so
+/// the walk starts there instead of at the start of the boot, which made a file of many M584s quadratic.
+inline NodeId walk_start(const NodeContext& cx, const tools::NodeCommand& mk, NodeId m, const DriveMap& at) {
+  const NodeId begin = cx.segment().begin;
+  std::string letters;
+  for (char L : allowed_axis_letters()) {
+    if (!mk.pf->find(*mk.c, L)) continue;
+    if (!at.axis(L)) return begin;  // it creates an axis: any earlier value for it counts
+    letters += L;
+  }
+  if (mk.pf->find(*mk.c, 'E')) letters += 'E';
+  for (NodeId i = m; i > begin; --i) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, i - 1);
+    if (!k || !k.is('M', 584)) continue;
+    if (std::all_of(letters.begin(), letters.end(), [&](char L) { return bool(k.pf->find(*k.c, L)); })) return i - 1;
+  }
+  return begin;
+}
+
 /// The earlier commands in this segment that lose effect because of the M584 at node `m`, whose drive mapping
 /// before it runs is `at`: axis values of axes it creates (RRF201), and the RRF203 cases whose later M584 it is.
 /// E values before the first `M584 E` (RRF202) are rejected with an error, not lost silently: not counted.
@@ -221,7 +241,7 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
   const tools::NodeCommand mk = tools::command_at(cx.machine, cx.graph, m);
   if (!mk || !at.axes_known || !changes_mapping(mk, at)) return out;
   std::map<char, std::vector<std::pair<NodeId, tools::NodeCommand>>> pending;  // RRF203 candidates by letter
-  cx.graph.nodes.find_if(cx.segment().begin, m, [&](NodeId i, const Node& n) {
+  cx.graph.nodes.find_if(walk_start(cx, mk, m, at), m, [&](NodeId i, const Node& n) {
     const tools::NodeCommand k = tools::command_at(cx.machine, n);
     if (!k) return false;
     if (k.is('M', 584)) {
