@@ -7,7 +7,8 @@ Rows live in tests/planted/*.tsv, tab-separated, '#' starts a comment line:
 
 The folder ../shared/corpus/<corpus-folder> is copied to a scratch directory (the corpus is never written).
 `text` (a literal backslash-n separates lines) is inserted before the first line of the file that the Python
-regular expression `anchor` matches (searched with re.search); `$END` appends at the end of the file. The
+regular expression `anchor` matches (searched with re.search); `$END` appends at the end of the file, and `$NEW`
+creates the file, which must not exist yet (a mistake that is a file: a config-override.g nothing loads). The
 inserted line that must carry the finding starts with '>' (removed before insertion); without one, the first
 inserted line. The copy is linted with `rrflint check DIR --isolated --select CODE --format json`, and a
 finding of CODE in that file at that line is required.
@@ -45,13 +46,18 @@ def read_rows():
 def plant(root, rel, anchor, text):
     """Inserts text into root/rel; returns the 1-based line number that must carry the finding."""
     path = os.path.join(root, rel)
-    with open(path, encoding="utf-8", errors="surrogateescape", newline="") as f:
-        lines = f.read().splitlines(keepends=True)
+    if anchor == "$NEW":
+        if os.path.exists(path):
+            raise LookupError(f"{rel} exists already: $NEW creates a file")
+        lines = []
+    else:
+        with open(path, encoding="utf-8", errors="surrogateescape", newline="") as f:
+            lines = f.read().splitlines(keepends=True)
     new = text.split("\\n")
     mark = next((i for i, l in enumerate(new) if l.startswith(">")), 0)
     new = [l[1:] if l.startswith(">") else l for l in new]
     eol = "\r\n" if lines and lines[0].endswith("\r\n") else "\n"
-    if anchor == "$END":
+    if anchor in ("$END", "$NEW"):
         at = len(lines)
         if lines and not lines[-1].endswith("\n"):
             lines[-1] += eol
