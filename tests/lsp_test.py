@@ -417,6 +417,9 @@ def test_code_action_fix(s, card):
     at = utf16(line[:line.index("'t")])
     want = [{"range": {"start": {"line": n, "character": at}, "end": {"line": n, "character": at}}, "newText": "'"}]
     check(a["edit"]["changes"] == {uri_of(config): want}, f"the fix's edit {a['edit']}")
+    only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
+        "range"], "context": {"diagnostics": [], "only": ["source.fixAll"]}})
+    check(only["result"] == [], f"only source.fixAll: {only}")
     fixed = apply_action(s, config, text, a, 2)
     check("don''t" in fixed, "the apostrophe doubled")
     p = s.diagnostics(uri_of(config), "diagnostics after the code action")
