@@ -159,7 +159,8 @@ def test_initialize(s, card):
     r = s.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
     caps = r["result"]["capabilities"]
     check(caps == {"positionEncoding": "utf-16",
-                   "textDocumentSync": {"openClose": True, "change": 2, "save": {"includeText": False}}},
+                   "textDocumentSync": {"openClose": True, "change": 2, "save": {"includeText": False}},
+                   "codeActionProvider": {"codeActionKinds": ["quickfix"]}},
           f"capabilities: {caps}")
     check(r["result"]["serverInfo"]["name"] == "rrflint", "serverInfo")
     again = s.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
@@ -362,6 +363,88 @@ def test_truncated_body_then_eof(s, card):
     s.write(b"Content-Length: 100\r\n\r\n{\"jsonrpc\"")
     s.proc.stdin.close()
     check(s.finish() == 1, "exit code at the end of the input inside a body")
+
+
+def offset_of(text, pos):
+    lines = text.splitlines(keepends=True)
+    at = sum(len(x) for x in lines[:pos["line"]])
+    line, units = (lines[pos["line"]] if pos["line"] < len(lines) else ""), 0
+    for ch in line:
+        if units >= pos["character"] or ch in "\r\n":
+            break
+        units += utf16(ch)
+        at += 1
+    return at
+
+
+def apply_edits(text, edits):
+    """`text` with LSP TextEdits applied (last first, so earlier offsets hold)."""
+    spans = [(offset_of(text, e["range"]["start"]), offset_of(text, e["range"]["end"]), e["newText"]) for e in edits]
+    for start, end, new in sorted(spans, key=lambda x: x[0], reverse=True):
+        text = text[:start] + new + text[end:]
+    return text
+
+
+def code_action(s, path, title, line):
+    r = s.request("textDocument/codeAction", {
+        "textDocument": {"uri": uri_of(path)},
+        "range": {"start": {"line": line, "character": 0}, "end": {"line": line, "character": 0}},
+        "context": {"diagnostics": []}})
+    actions = r["result"]
+    found = [a for a in actions if a["title"] == title]
+    check(len(found) == 1, f"one action {title!r} in {[a['title'] for a in actions]}")
+    a = found[0]
+    check(a["kind"] == "quickfix" and [d["code"] for d in a["diagnostics"]] == [title.split()[1]]
+          if title.startswith("suppress") else a["kind"] == "quickfix", f"kind/diagnostics {a}")
+    return a
+
+
+def apply_action(s, path, text, a, version):
+    edits = a["edit"]["changes"][uri_of(path)]
+    fixed = apply_edits(text, edits)
+    s.change(path, version, [{"text": fixed}])
+    return fixed
+
+
+def test_code_action_fix(s, card):
+    s.initialize()
+    config = os.path.join(card, "sys", "config.g")
+    text = s.open(config)
+    s.diagnostics(uri_of(config))
+    n, line = line_of(text, "don't")
+    a = code_action(s, config, "double the apostrophe", n)
+    check(a.get("isPreferred") is True and [d["code"] for d in a["diagnostics"]] == ["RRF104"], f"the fix {a}")
+    at = utf16(line[:line.index("'t")])
+    want = [{"range": {"start": {"line": n, "character": at}, "end": {"line": n, "character": at}}, "newText": "'"}]
+    check(a["edit"]["changes"] == {uri_of(config): want}, f"the fix's edit {a['edit']}")
+    only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
+        "range"], "context": {"diagnostics": [], "only": ["source.fixAll"]}})
+    check(only["result"] == [], f"only source.fixAll: {only}")
+    fixed = apply_action(s, config, text, a, 2)
+    check("don''t" in fixed, "the apostrophe doubled")
+    p = s.diagnostics(uri_of(config), "diagnostics after the code action")
+    check(p["version"] == 2 and codes(p) == ["RRF320", "RRF301"], f"codes after the code action {codes(p)}")
+
+
+def test_code_action_suppress(s, card):
+    s.initialize()
+    config = os.path.join(card, "sys", "config.g")
+    text = s.open(config)
+    s.diagnostics(uri_of(config))
+    n, line = line_of(text, "G10 P1")
+    a = code_action(s, config, "suppress RRF301 on this line", n)
+    check(not a.get("isPreferred"), "a suppression is not preferred")
+    edits = a["edit"]["changes"][uri_of(config)]
+    check(len(edits) == 1 and edits[0]["newText"].startswith(" ; rrflint: disable=")
+          and edits[0]["range"]["start"] == {"line": n, "character": utf16(line)}, f"the suppression's edit {edits}")
+    fixed = apply_action(s, config, text, a, 2)
+    check(fixed.splitlines()[n].startswith("G10 P1 X0 Y0 Z0 ; rrflint: disable="), f"line {fixed.splitlines()[n]!r}")
+    p = s.diagnostics(uri_of(config), "diagnostics after the suppression")
+    check(codes(p) == ["RRF104", "RRF320"], f"codes after suppressing on the line {codes(p)}")
+    f = code_action(s, config, "suppress RRF104 in this file", n - 4)
+    check(f["edit"]["changes"][uri_of(config)][0]["range"]["start"] == {"line": 0, "character": 0}, f"file-wide {f}")
+    s.change(config, 3, [{"text": apply_edits(fixed, f["edit"]["changes"][uri_of(config)])}])
+    check(codes(s.diagnostics(uri_of(config), "after the file-wide one")) == ["RRF320"], "RRF104 suppressed")
 
 
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]

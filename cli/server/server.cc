@@ -1,7 +1,8 @@
 // `rrflint server`: the Language Server Protocol 3.17 over stdin and stdout, with the core library in-process.
 //
 // What it implements (and so advertises): the lifecycle (initialize, initialized, shutdown, exit), text sync
-// (didOpen, full and incremental didChange, didSave, didClose) and pushed diagnostics. Every request is answered
+// (didOpen, full and incremental didChange, didSave, didClose), pushed diagnostics and code actions (quickfix:
+// each finding's fix, and suppressing it on its line or in its file). Every request is answered
 // at once, in order, so `$/cancelRequest` has nothing to cancel and is accepted and ignored. Unknown requests get
 // MethodNotFound; unknown notifications are ignored; a broken message gets a ParseError response or a log line
 // (stderr and window/logMessage), and the server reads on.
@@ -92,7 +93,7 @@ class Server {
     return std::nullopt;
   }
 
-  void request(const json& id, const std::string& method, const json& /*params*/) {
+  void request(const json& id, const std::string& method, const json& params) {
     try {
       if (shutdown_) return send(error_response(id, kInvalidRequest, "the server is shut down"));
       if (method == "initialize") {
@@ -104,6 +105,12 @@ class Server {
       if (method == "shutdown") {
         shutdown_ = true;
         return send(response(id, nullptr));
+      }
+      if (method == "textDocument/codeAction") {
+        static const json kNoContext = json::object();
+        auto ctx = params.find("context");
+        return send(response(id, ws_.code_actions(params.at("textDocument").at("uri").get<std::string>(),
+                                                  params.at("range"), ctx == params.end() ? kNoContext : *ctx)));
       }
       send(error_response(id, kMethodNotFound, "unknown method: " + method));
     } catch (const json::exception& e) {
@@ -117,7 +124,8 @@ class Server {
     return {{"capabilities",
              {{"positionEncoding", "utf-16"},
               {"textDocumentSync",
-               {{"openClose", true}, {"change", 2 /* incremental */}, {"save", {{"includeText", false}}}}}}},
+               {{"openClose", true}, {"change", 2 /* incremental */}, {"save", {{"includeText", false}}}}},
+              {"codeActionProvider", {{"codeActionKinds", json::array({"quickfix"})}}}}},
             {"serverInfo", {{"name", "rrflint"}, {"version", RRFLINT_VERSION}}}};
   }
 

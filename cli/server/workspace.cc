@@ -22,7 +22,17 @@ std::string name_of_uri(const std::string& uri) {
   return name;
 }
 
-// An LSP range for a span of a file, in UTF-16 units.
+int severity_of(Severity s) {
+  switch (s) {
+    case Severity::Error: return 1;
+    case Severity::Warning: return 2;
+    case Severity::Info: return 3;
+  }
+  return 2;
+}
+
+}  // namespace
+
 json range_json(const SourceFile& f, Span s) {
   auto pos = [&](uint32_t off) {
     off = std::min(off, f.size());
@@ -34,16 +44,6 @@ json range_json(const SourceFile& f, Span s) {
   return {{"start", pos(s.begin)}, {"end", pos(std::max(s.begin, s.end))}};
 }
 
-int severity_of(Severity s) {
-  switch (s) {
-    case Severity::Error: return 1;
-    case Severity::Warning: return 2;
-    case Severity::Info: return 3;
-  }
-  return 2;
-}
-
-// One finding as an LSP Diagnostic; notes in files with a URI become its related information.
 json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::string& docs_base,
                      const std::function<std::optional<std::string>(FileId)>& uri_of) {
   json j{{"range", range_json(sm.get(d.loc.file), d.loc.span)},
@@ -64,7 +64,10 @@ json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::st
   return j;
 }
 
-}  // namespace
+std::optional<std::string> Snapshot::uri_of(FileId id) const {
+  auto it = uris.find(id);
+  return it == uris.end() ? std::nullopt : it->second;
+}
 
 void OverlayReader::add(const std::string& sd_path, std::string display, std::string bytes) {
   buffers_[to_lower(sd_path)] = Buffer{sd_path, std::move(display), std::move(bytes)};
@@ -194,7 +197,8 @@ void Workspace::lint(const std::string& key) {
     if (d == docs_.end()) return;
     lone = &d->second;
   }
-  const cli::Job job = job_of(m, lone);
+  auto snap = std::make_unique<Snapshot>(job_of(m, lone));
+  m.last.reset();
   cli::Settings settings(cli_);  // afresh each time: .rrflint.toml may have changed
   cli::Effective eff;
   std::error_code ec;
@@ -212,31 +216,34 @@ void Workspace::lint(const std::string& key) {
   }
   shown_.clear();
   eff.lint.threads = cli::default_threads();
-  cli::JobReader disk(job);
-  OverlayReader reader(disk);
   std::map<std::string, const Document*> by_sd;  // lower-cased SD path -> open buffer
   for (const auto& [uri, d] : docs_)
     if (m.card && d.machine == key) {
-      reader.add(d.sd_path, d.path.value_or(uri), d.text);
+      snap->reader.add(d.sd_path, d.path.value_or(uri), d.text);
       by_sd[to_lower(d.sd_path)] = &d;
     }
-  SourceManager sm;
-  const MachineResult r = lint_machine(sm, reader, builtin_rules(), eff.lint);
-  std::map<FileId, std::optional<std::string>> uris;
+  SourceManager& sm = snap->sm;
+  snap->result = lint_machine(sm, snap->reader, builtin_rules(), eff.lint);
   auto uri_of = [&](FileId id) -> std::optional<std::string> {
-    auto [it, fresh] = uris.try_emplace(id);
+    auto [it, fresh] = snap->uris.try_emplace(id);
     if (!fresh) return it->second;
     const SourceFile& f = sm.get(id);
     if (lone) it->second = lone->uri;  // a lone machine has one file
     else if (auto d = by_sd.find(to_lower(f.sd_path())); d != by_sd.end()) it->second = d->second->uri;
-    else if (auto abs = disk.disk_path(f.sd_path()); abs && !settings.excluded(*abs)) it->second = uri_of_path(*abs);
+    else if (auto abs = snap->disk.disk_path(f.sd_path()); abs && !settings.excluded(*abs))
+      it->second = uri_of_path(*abs);
     return it->second;
   };
   std::map<std::string, json> found;
-  for (const Diagnostic& d : r.diagnostics) {
+  for (const Diagnostic& d : snap->result.diagnostics) {
     if (d.loc.file == kNoFile) continue;
     if (auto uri = uri_of(d.loc.file)) found[*uri].push_back(diagnostic_json(sm, d, eff.docs_base, uri_of));
+    if (d.fix)
+      for (const Edit& e : d.fix->edits)
+        if (e.loc.file != kNoFile) uri_of(e.loc.file);
   }
+  m.docs_base = eff.docs_base;
+  m.last = std::move(snap);
   publish_all(key, m, found);
 }
 

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -36,6 +37,29 @@ class OverlayReader : public FileReader {
   std::map<std::string, Buffer> buffers_;  // by lower-cased SD path
 };
 
+/// The last lint of a machine, kept whole for the requests about it (code actions): the result, the files it read
+/// and the URI of each file. Not movable: the result refers to the sources and the reader.
+struct Snapshot {
+  explicit Snapshot(cli::Job j) : job(std::move(j)), disk(job), reader(disk) {}
+  Snapshot(const Snapshot&) = delete;
+  Snapshot& operator=(const Snapshot&) = delete;
+  /// The URI of a file of the result, if it has one (a file excluded by the settings has none).
+  std::optional<std::string> uri_of(FileId id) const;
+
+  cli::Job job;
+  cli::JobReader disk;
+  OverlayReader reader;
+  SourceManager sm;
+  MachineResult result;
+  std::map<FileId, std::optional<std::string>> uris;  // filled by the lint for every file with a finding or note
+};
+
+/// An LSP range for a span of a file, in UTF-16 units.
+json range_json(const SourceFile& f, Span s);
+/// One finding as an LSP Diagnostic; notes in files with a URI become its related information.
+json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::string& docs_base,
+                     const std::function<std::optional<std::string>(FileId)>& uri_of);
+
 class Workspace {
  public:
   /// `send`: sends a notification to the client; `log`: a line for the client's log.
@@ -49,6 +73,8 @@ class Workspace {
   void close(const std::string& uri);
   bool is_open(const std::string& uri) const { return docs_.count(uri) > 0; }
   const std::string* text(const std::string& uri) const;
+  /// The code actions for the findings of an open document that meet `range` (textDocument/codeAction).
+  json code_actions(const std::string& uri, const json& range, const json& context) const;
 
  private:
   struct Document {
@@ -63,6 +89,8 @@ class Workspace {
     std::optional<CardLocation> card;  // none: a lone document
     std::string lone_uri;
     std::set<std::string> published;  // URIs last published with findings
+    std::unique_ptr<Snapshot> last;   // the last lint (none after a configuration error)
+    std::string docs_base;            // of the last lint
   };
 
   void place(Document& doc);  // finds the document's machine (and creates its entry)

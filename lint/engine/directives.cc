@@ -302,12 +302,16 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
   if (!file_level.empty()) {
     std::string list;
     for (const std::string& n : file_level) list += (list.empty() ? "" : ",") + n;
-    std::string eol = f.line_count() > 0 ? std::string(f.terminator(0)) : "";
-    if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
-    edits.push_back(
-        Edit::insert(Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol)));
+    edits.push_back(file_suppression_edit(f, list, reason));
   }
   return edits;
+}
+
+Edit file_suppression_edit(const SourceFile& f, std::string_view list, std::string_view reason) {
+  const std::string why = reason.empty() ? "" : fmt::format(" -- {}", reason);
+  std::string eol = f.line_count() > 0 ? std::string(f.terminator(0)) : "";
+  if (eol.empty()) eol = f.endings().crlf > f.endings().lf ? "\r\n" : "\n";
+  return Edit::insert(Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol));
 }
 
 }  // namespace rrflint

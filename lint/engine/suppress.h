@@ -75,6 +75,9 @@ void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vec
 std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
                                     const std::map<uint32_t, std::vector<std::string>>& by_line,
                                     std::string_view reason);
+/// The edit that adds `; rrflint: disable-file=LIST` (and ` -- REASON` when not empty) as a line at the top of
+/// `f`, with the file's line ending.
+Edit file_suppression_edit(const SourceFile& f, std::string_view list, std::string_view reason);
 
 /// The two rules of the suppression pass itself (their metadata and docs sit beside this file:
 /// unused_suppression.cc, unknown_rule_in_suppression.cc). They are not in rules/: the engine produces them.
