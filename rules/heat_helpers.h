@@ -34,9 +34,10 @@ inline bool names_heater(const tools::NodeCommand& k, int h) {
 
 /// Is this node judged by other rules? Lines of config-override.g (at the M501 they are RRF401's notes; unloaded,
 /// RRF404's). No finding stands in resurrect.g at all (the engine drops them: docs/firmware-behaviour.md#system-files).
-inline bool judged_elsewhere(const NodeContext& cx) {
-  return file_role(cx.unit().sd_path) == FileRole::ConfigOverride || tools::inside_m501(cx.graph, cx.id);
+inline bool judged_elsewhere(const Machine& m, const Graph& g, NodeId id) {
+  return file_role(m.unit(g.nodes[id].unit).sd_path) == FileRole::ConfigOverride || tools::inside_m501(g, id);
 }
+inline bool judged_elsewhere(const NodeContext& cx) { return judged_elsewhere(cx.machine, cx.graph, cx.id); }
 
 /// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when an
 /// M950 on the way creates a device of that kind from an expression (it may be n).
@@ -83,13 +84,15 @@ inline NodeId later_sensor(const NodeContext& cx, int n, bool& unknown) {
                            [&](const tools::NodeCommand& k) { return creates_sensor(*k.pf, *k.c, n, unknown); });
 }
 
-/// Does any M308 on the card create sensor n (or may it)? A macro run after boot may create it.
-inline bool any_m308_creates(const Machine& m, int n) {
-  bool unknown = false;
+/// Does any M308 on the card create sensor n? A macro run after boot may create it. With `or_unknown`, an M308 whose
+/// sensor number is an expression (it may be n) counts too.
+inline bool any_m308_creates(const Machine& m, int n, bool or_unknown = false) {
   for (uint32_t i = 0; i < m.unit_count(); ++i) {
     const ParsedFile& pf = m.unit(i).parsed;
-    for (const uint32_t j : pf.with_code('M', 308))
-      if (creates_sensor(pf, pf.commands[j], n, unknown)) return true;
+    for (const uint32_t j : pf.with_code('M', 308)) {
+      bool unknown = false;
+      if (creates_sensor(pf, pf.commands[j], n, unknown) || (or_unknown && unknown)) return true;
+    }
   }
   return false;
 }

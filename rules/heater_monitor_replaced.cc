@@ -139,8 +139,8 @@ std::vector<std::string> differences(const Monitor& old, const Monitor& now) {
 
 /// Is node `id` in a file that other rules judge (config-override.g, resurrect.g)?
 bool judged_elsewhere(const NodeContext& cx, NodeId id) {
-  const FileRole role = file_role(cx.machine.unit(cx.graph.nodes[id].unit).sd_path);
-  return role == FileRole::ConfigOverride || role == FileRole::Resurrect || tools::inside_m501(cx.graph, id);
+  return heat::judged_elsewhere(cx.machine, cx.graph, id) ||
+         file_role(cx.machine.unit(cx.graph.nodes[id].unit).sd_path) == FileRole::Resurrect;
 }
 
 /// The last earlier M143 in this segment that set slot `m.slot` of heater `m.heater`, with what it set in `old`;

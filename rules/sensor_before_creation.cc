@@ -72,16 +72,9 @@ void check(const NodeContext& cx, Sink& out) {
   bool unknown = false;
   // The walk to the end of the boot is needed only when some M308 on the card creates sensor sn, or may: a
   // card-wide look at the M308 lists first keeps a file of many heaters linear.
-  bool may = false;
-  for (uint32_t i = 0; i < cx.machine.unit_count() && !may; ++i) {
-    const ParsedFile& upf = cx.machine.unit(i).parsed;
-    for (const uint32_t j : upf.with_code('M', 308)) {
-      bool u = false;
-      if (heat::creates_sensor(upf, upf.commands[j], sn, u) || u) may = true;
-    }
-  }
+  const bool may = heat::any_m308_creates(cx.machine, sn, true);
   const NodeId create = cx.in_boot() && may ? heat::later_sensor(cx, sn, unknown) : kNoNode;
-  if (unknown || (create == kNoNode && heat::any_m308_creates(cx.machine, sn))) return;
+  if (unknown || (create == kNoNode && may && heat::any_m308_creates(cx.machine, sn))) return;
   const std::string what =
       create == kNoNode
           ? fmt::format(

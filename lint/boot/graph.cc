@@ -104,6 +104,8 @@ class Builder {
   const std::vector<uint32_t>& assignment_lines(const FileUnit& u);
   std::unordered_map<uint32_t, std::vector<uint32_t>> assignments_;  // unit -> assignment_lines
   void assign_until(const FileUnit& u, FileValues& fv, uint32_t line);
+  /// What an expression may read here: directories.system (the M505 folder), the globals, the file's vars.
+  ConstEnv env(const FileValues& fv) const;
   std::optional<std::string> evaluated_path(const FileUnit& u, const Command& c, FileValues& fv, uint32_t line);
 };
 
@@ -126,6 +128,8 @@ const std::vector<uint32_t>& Builder::assignment_lines(const FileUnit& u) {
   return it->second;
 }
 
+ConstEnv Builder::env(const FileValues& fv) const { return ConstEnv{"0:" + sys_dir_ + "/", &globals_, &fv.vars}; }
+
 // Applies the file's assignments on lines before `line`: a constant value is known from there on, anything else
 // (or an assignment inside a block) makes the name unknown.
 void Builder::assign_until(const FileUnit& u, FileValues& fv, uint32_t line) {
@@ -138,8 +142,8 @@ void Builder::assign_until(const FileUnit& u, FileValues& fv, uint32_t line) {
     if (l.meta == MetaKind::Set) name.remove_prefix(name.find('.') + 1);  // "global.x" / "var.x": the parser checked
     // An element (`set global.a[1] = …`), a value set in a block, or anything not constant: unknown from here.
     const bool element = pf.text(Span{l.meta_name.end, l.meta_arg.begin}).find('[') != std::string_view::npos;
-    const ConstEnv env{"0:" + sys_dir_ + "/", &globals_, &fv.vars};
-    const ConstValue v = element || l.conditional || l.in_loop ? ConstValue{} : const_eval(pf.text(l.meta_arg), env);
+    const ConstValue v =
+        element || l.conditional || l.in_loop ? ConstValue{} : const_eval(pf.text(l.meta_arg), env(fv));
     if (v.known()) (*scope)[std::string(name)] = v;
     else scope->erase(std::string(name));
   }
@@ -153,7 +157,7 @@ std::optional<std::string> Builder::evaluated_path(const FileUnit& u, const Comm
   std::string_view e = pf.text(P->value);
   if (e.size() < 2 || e.front() != '{' || e.back() != '}') return std::nullopt;
   assign_until(u, fv, line);
-  const ConstValue v = const_eval(e.substr(1, e.size() - 2), ConstEnv{"0:" + sys_dir_ + "/", &globals_, &fv.vars});
+  const ConstValue v = const_eval(e.substr(1, e.size() - 2), env(fv));
   if (v.kind != ConstValue::Kind::String) return std::nullopt;
   return v.str;
 }
@@ -256,7 +260,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
   FileValues fv{assignment_lines(u)};
   Stretches stretches(pf, chains(u), [&](uint32_t line) {
     assign_until(u, fv, line);
-    return const_eval(pf.text(pf.lines[line].meta_arg), ConstEnv{"0:" + sys_dir_ + "/", &globals_, &fv.vars});
+    return const_eval(pf.text(pf.lines[line].meta_arg), env(fv));
   });
   uint32_t ci = 0;                       // the next command to push
   auto push_until = [&](uint32_t end) {  // pushes commands [ci, end); false when the node limit cut them short
