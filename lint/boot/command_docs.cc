@@ -42,7 +42,7 @@ constexpr CommandDoc kDocs[] = {
      "m563-define-or-remove-a-tool", kM563},
 };
 
-auto key(const CommandDoc& d) { return std::tuple(d.letter, d.number, d.fraction); }
+constexpr auto key(const CommandDoc& d) { return std::tuple(d.letter, d.number, d.fraction); }
 
 }  // namespace
 
