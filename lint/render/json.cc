@@ -12,10 +12,18 @@
 namespace rrflint {
 namespace {
 
-void write_range(JsonWriter& w, const Range& r) {
+// An edit or a note: {column, end_column, end_line, file, line, <text_key>: text}.
+void write_located(JsonWriter& w, JsonPaths& paths, const Location& loc, std::string_view text_key,
+                   std::string_view text) {
+  const Range r = range_of(paths.sources(), loc);
+  w.begin_object();
   w.member("column", r.start.column);
   w.member("end_column", r.end.column);
   w.member("end_line", r.end.line);
+  w.member("file", paths.of(loc.file));
+  w.member("line", r.start.line);
+  w.member(text_key, sanitize(text));
+  w.end_object();
 }
 
 }  // namespace
@@ -27,11 +35,12 @@ const std::string& JsonPaths::of(FileId id) {
 }
 
 void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d, std::string_view docs_base) {
-  const SourceManager& sm = paths.sources();
-  const Range r = range_of(sm, d.loc);
+  const Range r = range_of(paths.sources(), d.loc);
   w.begin_object();
   w.member("code", d.code);
-  write_range(w, r);
+  w.member("column", r.start.column);
+  w.member("end_column", r.end.column);
+  w.member("end_line", r.end.line);
   w.member("file", paths.of(d.loc.file));
   w.key("fix");
   if (d.fix) {
@@ -39,15 +48,7 @@ void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d,
     w.member("applicability", applicability_name(d.fix->applicability));
     w.key("edits");
     w.begin_array();
-    for (const Edit& e : d.fix->edits) {
-      const Range er = range_of(sm, e.loc);
-      w.begin_object();
-      write_range(w, er);
-      w.member("file", paths.of(e.loc.file));
-      w.member("line", er.start.line);
-      w.member("replacement", sanitize(e.replacement));
-      w.end_object();
-    }
+    for (const Edit& e : d.fix->edits) write_located(w, paths, e.loc, "replacement", e.replacement);
     w.end_array();
     w.member("message", sanitize(d.fix->title));
     w.end_object();
@@ -59,15 +60,7 @@ void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d,
   w.member("name", d.name);
   w.key("notes");
   w.begin_array();
-  for (const Note& n : d.notes) {
-    const Range nr = range_of(sm, n.loc);
-    w.begin_object();
-    write_range(w, nr);
-    w.member("file", paths.of(n.loc.file));
-    w.member("line", nr.start.line);
-    w.member("message", sanitize(n.message));
-    w.end_object();
-  }
+  for (const Note& n : d.notes) write_located(w, paths, n.loc, "message", n.message);
   w.end_array();
   w.member("severity", severity_name(d.severity));
   w.member("url", rule_url(docs_base, d.name));
