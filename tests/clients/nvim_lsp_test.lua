@@ -144,6 +144,14 @@ local function main()
   wait_for(config, "", from, "after closing config.g")
   wait_for(tools, "", from, "after closing config.g")
 
+  -- An extensionless macro is G-code by its folder, and the snippet attaches the client it already started.
+  vim.cmd("edit " .. vim.fn.fnameescape(card .. "/macros/park"))
+  local park = vim.api.nvim_get_current_buf()
+  check(vim.bo[park].filetype == "gcode", "the snippet's filetype for macros/park is '" .. vim.bo[park].filetype .. "'")
+  local attached = vim.tbl_keys(vim.lsp.buf_get_clients(park))
+  check(same(attached, { client.id }), "macros/park has the clients " .. vim.inspect(attached) .. ", not " .. client.id)
+  check(#vim.lsp.get_active_clients() == 1, "the snippet started a second server")
+
   -- And the server stops cleanly when asked to.
   vim.lsp.stop_client(client.id)
   check(vim.wait(WAIT_MS, function()
