@@ -34,7 +34,7 @@ export XDG_STATE_HOME="$scratch/home/.local/state" XDG_CACHE_HOME="$scratch/home
 export RRFLINT_CARD="$scratch/card" RRFLINT_EDITORS_MD="$here/../../docs/editors.md"
 PATH="$(cd "$(dirname "$rrflint")" && pwd):$PATH"
 export PATH
-cd "$scratch"
+cd "$scratch" || exit 1
 
 start=$(date +%s.%N)
 case "$client" in
