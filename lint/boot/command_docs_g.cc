@@ -51,7 +51,7 @@ constexpr ParamDoc kG31[] = {{'K', "probe number (default 0)"},
                              {'C', "temperature coefficient up to 3.2; from 3.3 an axis offset"},
                              {'S', "calibration temperature"},
                              {'T', "temperature coefficients (3.3+)"},
-                             {'H', "heater or sensor read for the temperature"}};
+                             {'H', "sensor read for temperature compensation"}};
 constexpr ParamDoc kG32[] = {{'S', "passed on to bed.g"}};
 constexpr ParamDoc kG38[] = {
     {'X', "X target"}, {'Y', "Y target"}, {'Z', "Z target"}, {'U', "other axes too"}, {'P', "probe number (3.1+)"},
@@ -63,8 +63,8 @@ constexpr ParamDoc kG92[] = {
 
 constexpr CommandDoc kDocs[] = {
     {'G', 0, -1, "Rapid move",
-     "Moves at the feed rate given; RRF treats it as G1 except that in CNC or laser mode it moves at full speed and "
-     "never cuts or fires.",
+     "Moves like G1 in FFF mode; in CNC and laser mode it ignores F and moves as fast as M203 allows, and the laser "
+     "does not fire.",
      "g0-rapid-move", kMove},
     {'G', 1, -1, "Linear move",
      "Moves the axes in a straight line to the given position and extrudes E, at feed rate F; H1-H3 make it a homing "

@@ -5,7 +5,10 @@ namespace rrflint::docs {
 namespace {
 
 constexpr std::span<const ParamDoc> kNone;  // a command without parameters
-constexpr ParamDoc kStop[] = {{'H', "H1: leave the heaters on"}};
+constexpr ParamDoc kStop[] = {{'H', "H1: leave the heaters on (before 3.4)"}};
+constexpr ParamDoc kSpindle[] = {{'S', "spindle speed (RPM), or laser power in laser mode (M3)"},
+                                 {'P', "spindle number (default: the current tool's)"}};
+constexpr ParamDoc kM5[] = {{'P', "spindle number"}};
 constexpr ParamDoc kMotors[] = {{'X', "X motor"},
                                 {'Y', "Y motor"},
                                 {'Z', "Z motor"},
@@ -37,9 +40,9 @@ constexpr ParamDoc kM116[] = {{'P', "tool to wait for"},
                               {'H', "heaters to wait for"},
                               {'C', "chamber heater to wait for"},
                               {'S', "tolerance (degrees C)"}};
-constexpr ParamDoc kM117[] = {{'S', "the message (3.5+; else the rest of the line)"}};
-constexpr ParamDoc kM118[] = {
-    {'P', "destination: 0 all, 1 USB, 2 PanelDue, 3 web, 4 second serial"}, {'S', "the message"}, {'L', "log level"}};
+constexpr ParamDoc kM118[] = {{'P', "destination: 0 all, 1 USB, 2 PanelDue port, 3 HTTP, 4 Telnet, 6 MQTT"},
+                              {'S', "the message"},
+                              {'L', "log level"}};
 constexpr ParamDoc kBed[] = {{'P', "bed heater index (M140) or chamber index (M141)"},
                              {'H', "heater number; H-1 removes it"},
                              {'S', "active temperature"},
@@ -47,7 +50,7 @@ constexpr ParamDoc kBed[] = {{'P', "bed heater index (M140) or chamber index (M1
 constexpr ParamDoc kM143[] = {{'H', "heater number (default 1)"},
                               {'P', "monitor slot 0-2 (3.1+)"},
                               {'S', "temperature limit"},
-                              {'A', "action: 0 fault, 1 switch off, 2 pause, 3 stop"},
+                              {'A', "action: 0 fault, 1 switch off, 2 off until back in range, 3 shut down"},
                               {'C', "condition: 0 too high, 1 too low, -1 disabled"},
                               {'T', "sensor the monitor reads"}};
 constexpr ParamDoc kWaitBed[] = {
@@ -75,12 +78,12 @@ constexpr ParamDoc kM208[] = {{'S', "S0 (default) sets the maximums, S1 the mini
 constexpr ParamDoc kM220[] = {{'S', "speed factor (percent)"}};
 constexpr ParamDoc kM221[] = {{'D', "extruder number"}, {'S', "extrusion factor (percent)"}};
 constexpr ParamDoc kM260[] = {{'A', "I2C address"}, {'B', "bytes to send"}, {'R', "number of bytes to read back"}};
-constexpr ParamDoc kM261[] = {
-    {'A', "I2C address"}, {'B', "number of bytes to read"}, {'V', "variable to store them in (3.5+)"}};
-constexpr ParamDoc kM280[] = {
-    {'P', "servo port number (M950 S)"}, {'S', "angle (degrees) or pulse width (microseconds)"}, {'I', "I1: invert"}};
-constexpr ParamDoc kM290[] = {
-    {'Z', "Z babystep (mm)"}, {'R', "R1: relative (default), R0 absolute"}, {'S', "same as Z (older form)"}};
+constexpr ParamDoc kM261[] = {{'A', "I2C address"}, {'B', "number of bytes to read"}};
+constexpr ParamDoc kM280[] = {{'P', "servo port number (M950 S)"},
+                              {'S', "angle (degrees) or pulse width (microseconds)"}};
+constexpr ParamDoc kM290[] = {{'Z', "Z babystep (mm); other axis letters too"},
+                              {'R', "R1: relative (default), R0 absolute"},
+                              {'S', "same as Z (older form)"}};
 constexpr ParamDoc kM291[] = {{'P', "message"},
                               {'R', "title"},
                               {'S', "mode: 0-3 buttons, 4-7 choices and input (3.5+)"},
@@ -96,10 +99,19 @@ constexpr ParamDoc kM292[] = {
 
 constexpr CommandDoc kDocs[] = {
     {'M', 0, -1, "Stop",
-     "Ends the program: a paused print is cancelled and cancel.g runs, else stop.g; heaters go off unless H1.",
+     "Ends a print when a print file runs it; sent while paused, cancels the print (cancel.g, else stop.g, else all "
+     "heaters off); an error otherwise.",
      "m0-stop-or-unconditional-stop", kStop},
-    {'M', 1, -1, "Sleep", "Like M0 but runs sleep.g and then turns the motors off.", "m1-sleep-or-conditional-stop",
-     kStop},
+    {'M', 1, -1, "Sleep", "In RRF 3.5 the same as M0 (older versions ran sleep.g and turned the motors off too).",
+     "m1-sleep-or-conditional-stop", kStop},
+    {'M', 3, -1, "Spindle on, clockwise",
+     "Starts the spindle of the current tool (or P) clockwise at S RPM; in laser mode sets the laser power of the "
+     "moves that follow.",
+     "m3-spindle-on-clockwise", kSpindle},
+    {'M', 4, -1, "Spindle on, counter-clockwise",
+     "Starts the spindle of the current tool (or P) counter-clockwise at S RPM.", "m4-spindle-on-counterclockwise",
+     kSpindle},
+    {'M', 5, -1, "Spindle off", "Stops the spindle (or, in laser mode, the laser).", "m5-spindle-off", kM5},
     {'M', 17, -1, "Enable motors", "Energises the motors named, or all of them (3.3+).", "m17-enable-motors", kMotors},
     {'M', 18, -1, "Disable motors",
      "Turns off the motors named, or all of them; axes whose motors go off are no longer homed.", "m18-disable-motors",
@@ -144,10 +156,14 @@ constexpr CommandDoc kDocs[] = {
     {'M', 109, -1, "Set hot end temperature and wait",
      "Selects the tool when needed, sets its temperature and waits until it is reached.",
      "m109-set-extruder-temperature-and-wait", kHeatTool},
+    {'M', 112, -1, "Emergency stop",
+     "Stops everything at once and turns the heaters and motors off; the board needs a reset (M999) to go on.",
+     "m112-emergency-stop", kNone},
     {'M', 116, -1, "Wait for temperatures",
      "Waits until the heaters of the tool, the named heaters, or all active ones are at their targets.",
      "m116-wait-for-temperature-to-be-reached", kM116},
-    {'M', 117, -1, "Show a message", "Shows the text on the display and web interface.", "m117-display-message", kM117},
+    {'M', 117, -1, "Show a message", "Shows the rest of the line, quoted or not, on the display and web interface.",
+     "m117-display-message", kNone},
     {'M', 118, -1, "Send a message", "Sends the text to the chosen channel (USB, PanelDue, web, log).",
      "m118-send-message-to-specific-target", kM118},
     {'M', 120, -1, "Push state", "Saves feed rate, positioning modes and similar state, for M121 to restore.",
@@ -198,8 +214,9 @@ constexpr CommandDoc kDocs[] = {
     {'M', 261, -1, "I2C read", "Reads B bytes from the I2C device at address A.", "m261-i2c-request-data", kM261},
     {'M', 280, -1, "Servo position", "Drives servo port P, which M950 S must have created, to angle or pulse S.",
      "m280-set-servo-position", kM280},
-    {'M', 290, -1, "Babystepping", "Shifts Z by a small amount during a print, relative or absolute.",
-     "m290-baby-stepping", kM290},
+    {'M', 290, -1, "Babystepping",
+     "Shifts Z (or another axis) by a small amount without a move command, relative or absolute.", "m290-baby-stepping",
+     kM290},
     {'M', 291, -1, "Show a message box",
      "Shows message P with title R; S chooses whether it blocks and which buttons or input it offers.",
      "m291-display-message-and-optionally-wait-for-response", kM291},

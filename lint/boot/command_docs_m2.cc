@@ -5,6 +5,7 @@ namespace rrflint::docs {
 namespace {
 
 constexpr std::span<const ParamDoc> kNone;  // a command without parameters
+constexpr ParamDoc kM300[] = {{'P', "duration (ms)"}, {'S', "frequency (Hz)"}};
 constexpr ParamDoc kM301[] = {
     {'H', "heater number (default 1)"}, {'P', "proportional term"}, {'I', "integral term"}, {'D', "derivative term"}};
 constexpr ParamDoc kM302[] = {{'P', "P1: allow extruding when cold"},
@@ -141,6 +142,7 @@ constexpr ParamDoc kM569_7[] = {{'P', "driver (board.driver)"},
 constexpr ParamDoc kM569_8[] = {{'P', "driver (board.driver)"}};
 
 constexpr CommandDoc kDocs[] = {
+    {'M', 300, -1, "Beep", "Sounds a tone on the PanelDue or web interface.", "m300-play-beep-sound", kM300},
     {'M', 301, -1, "PID parameters",
      "Sets the PID terms of heater H (default 1), which must exist: before M950 creates it the answer is 'Heater n not "
      "found'.",
