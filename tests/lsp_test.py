@@ -160,7 +160,10 @@ def test_initialize(s, card):
     caps = r["result"]["capabilities"]
     check(caps == {"positionEncoding": "utf-16",
                    "textDocumentSync": {"openClose": True, "change": 2, "save": {"includeText": False}},
-                   "codeActionProvider": {"codeActionKinds": ["quickfix"]}},
+                   "codeActionProvider": {"codeActionKinds": ["quickfix"]},
+                   "hoverProvider": True,
+                   "completionProvider": {"triggerCharacters": [" ", ".", "\"", "/"]},
+                   "signatureHelpProvider": {"triggerCharacters": [" "]}},
           f"capabilities: {caps}")
     check(r["result"]["serverInfo"]["name"] == "rrflint", "serverInfo")
     again = s.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
@@ -298,9 +301,9 @@ def test_rrflint_toml(s, card):
 
 def test_method_not_found(s, card):
     s.initialize()
-    r = s.request("textDocument/hover", {"textDocument": {"uri": "file:///x.g"}, "position": {"line": 0,
-                                                                                         "character": 0}})
-    check(r.get("error", {}).get("code") == -32601, f"hover: {r}")
+    r = s.request("textDocument/definition", {"textDocument": {"uri": "file:///x.g"}, "position": {"line": 0,
+                                                                                              "character": 0}})
+    check(r.get("error", {}).get("code") == -32601, f"definition: {r}")
     r = s.request("rrflint/unknown", {}, msg_id="a string id")
     check(r.get("error", {}).get("code") == -32601 and r["id"] == "a string id", f"string id: {r}")
     s.notify("rrflint/unknownNotification", {})
@@ -450,9 +453,9 @@ def test_code_action_suppress(s, card):
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
 
 
-def run_one(binary, test):
+def run_one(binary, test, card_source=CARD):
     card = tempfile.mkdtemp(prefix="rrflint-lsp-")
-    shutil.copytree(CARD, card, dirs_exist_ok=True)
+    shutil.copytree(card_source, card, dirs_exist_ok=True)
     s = Server(binary)
     result = {}
 
@@ -476,19 +479,19 @@ def run_one(binary, test):
     return result.get("failure")
 
 
-def main():
+def main(tests=TESTS, card_source=CARD, doc=__doc__, title="lsp_test"):
     if len(sys.argv) < 2:
-        print(__doc__)
+        print(doc)
         return 2
     binary, names = sys.argv[1], sys.argv[2:]
     failed = 0
-    for test in TESTS:
+    for test in tests:
         if names and test.__name__ not in names and test.__name__[5:] not in names:
             continue
-        failure = run_one(binary, test)
+        failure = run_one(binary, test, card_source)
         print(f"{'ok  ' if failure is None else 'FAIL'} {test.__name__}" + (f": {failure}" if failure else ""))
         failed += failure is not None
-    print(f"lsp_test: {failed} failed")
+    print(f"{title}: {failed} failed")
     return 1 if failed else 0
 
 

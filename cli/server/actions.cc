@@ -3,6 +3,7 @@
 // code as `rrflint check --add-suppressions` (lint/engine/suppress.h).
 #include <fmt/format.h>
 
+#include "cli/server/model_at.h"
 #include "cli/server/workspace.h"
 #include "lint/engine/suppress.h"
 
@@ -45,13 +46,6 @@ json action(std::string title, const json& diagnostic, json edit, bool preferred
          {"edit", std::move(edit)}};
   if (preferred) a["isPreferred"] = true;
   return a;
-}
-
-const FileUnit* unit_of(const Snapshot& s, FileId file) {
-  if (!s.result.machine) return nullptr;
-  for (uint32_t i = 0; i < s.result.machine->unit_count(); ++i)
-    if (s.result.machine->unit(i).source->id() == file) return &s.result.machine->unit(i);
-  return nullptr;
 }
 
 // The two suppressions of one finding: on its line (when the line holds code: on a line without code the CLI's

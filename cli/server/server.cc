@@ -1,8 +1,9 @@
 // `rrflint server`: the Language Server Protocol 3.17 over stdin and stdout, with the core library in-process.
 //
 // What it implements (and so advertises): the lifecycle (initialize, initialized, shutdown, exit), text sync
-// (didOpen, full and incremental didChange, didSave, didClose), pushed diagnostics and code actions (quickfix:
-// each finding's fix, and suppressing it on its line or in its file). Every request is answered
+// (didOpen, full and incremental didChange, didSave, didClose), pushed diagnostics, code actions (quickfix:
+// each finding's fix, and suppressing it on its line or in its file), and hover, completion and signature help
+// on commands with the model at that point of the boot (features.h). Every request is answered
 // at once, in order, so `$/cancelRequest` has nothing to cancel and is accepted and ignored. Unknown requests get
 // MethodNotFound; unknown notifications are ignored; a broken message gets a ParseError response or a log line
 // (stderr and window/logMessage), and the server reads on.
@@ -12,6 +13,7 @@
 #include <optional>
 
 #include "cli/cli.h"
+#include "cli/server/features.h"
 #include "cli/server/protocol.h"
 #include "cli/server/workspace.h"
 #include "frontend/disk.h"
@@ -99,6 +101,7 @@ class Server {
       if (method == "initialize") {
         if (initialized_) return send(error_response(id, kInvalidRequest, "initialize was already sent"));
         initialized_ = true;
+        caps_ = ClientCaps::of(params.is_object() ? params.value("capabilities", json::object()) : json::object());
         return send(response(id, initialize_result()));
       }
       if (!initialized_) return send(error_response(id, kServerNotInitialized, "initialize first"));
@@ -112,6 +115,9 @@ class Server {
         return send(response(id, ws_.code_actions(params.at("textDocument").at("uri").get<std::string>(),
                                                   params.at("range"), ctx == params.end() ? kNoContext : *ctx)));
       }
+      if (method == "textDocument/hover") return send(response(id, hover(ws_, caps_, params)));
+      if (method == "textDocument/completion") return send(response(id, completion(ws_, caps_, params)));
+      if (method == "textDocument/signatureHelp") return send(response(id, signature_help(ws_, caps_, params)));
       send(error_response(id, kMethodNotFound, "unknown method: " + method));
     } catch (const json::exception& e) {
       send(error_response(id, kInvalidParams, std::string("bad params: ") + e.what()));
@@ -125,7 +131,10 @@ class Server {
              {{"positionEncoding", "utf-16"},
               {"textDocumentSync",
                {{"openClose", true}, {"change", 2 /* incremental */}, {"save", {{"includeText", false}}}}},
-              {"codeActionProvider", {{"codeActionKinds", json::array({"quickfix"})}}}}},
+              {"codeActionProvider", {{"codeActionKinds", json::array({"quickfix"})}}},
+              {"hoverProvider", true},
+              {"completionProvider", {{"triggerCharacters", completion_triggers()}}},
+              {"signatureHelpProvider", {{"triggerCharacters", signature_triggers()}}}}},
             {"serverInfo", {{"name", "rrflint"}, {"version", RRFLINT_VERSION}}}};
   }
 
@@ -153,6 +162,7 @@ class Server {
   }
 
   Workspace ws_;
+  ClientCaps caps_;
   bool initialized_ = false, shutdown_ = false, broken_ = false;
 };
 

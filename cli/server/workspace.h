@@ -75,6 +75,16 @@ class Workspace {
   const std::string* text(const std::string& uri) const;
   /// The code actions for the findings of an open document that meet `range` (textDocument/codeAction).
   json code_actions(const std::string& uri, const json& range, const json& context) const;
+  /// What a request about a position in a document reads (hover, completion, signature help: model_at.h): its
+  /// text (null when it is not open), its SD path ("" for a lone document), the last lint of its machine (null when
+  /// there is none; not const: completion lists the card through its reader) and that lint's docs link base.
+  struct View {
+    const std::string* text = nullptr;
+    std::string sd_path;
+    Snapshot* snap = nullptr;
+    std::string docs_base;
+  };
+  View view(const std::string& uri) const;  // defined in model_at.cc
 
  private:
   struct Document {

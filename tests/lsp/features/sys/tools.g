@@ -1,0 +1,2 @@
+; Run by config.g.
+global toolsReady = true
