@@ -41,6 +41,12 @@ uint32_t indent_of(std::string_view line) {
   return n;
 }
 
+// A file as the answers name it: its SD path without the leading '/' ("sys/config.g"), else as displayed.
+std::string_view file_label(const SourceFile& f) {
+  std::string_view p = f.sd_path();
+  return p.empty() ? std::string_view(f.display_path()) : p.substr(p.starts_with('/'));
+}
+
 using Names = std::map<std::string, std::string>;  // name -> where it is declared
 
 // The `global` declarations of a file on its logical lines [0, before).
@@ -52,7 +58,7 @@ void add_globals(const SourceFile& f, const ParsedFile& pf, uint32_t before, Nam
     const Line l = lines[i];
     if (l.meta == MetaKind::Global && !l.meta_name.empty())
       out.try_emplace(std::string(pf.text(l.meta_name)),
-                      fmt::format("{}:{}", f.display_path(), f.line_of(l.span.begin) + 1));
+                      fmt::format("{}:{}", file_label(f), f.line_of(l.span.begin) + 1));
   }
 }
 
@@ -226,7 +232,7 @@ std::string DocAt::where(NodeId id, bool markdown) const {
   const FileUnit* u = unit_of(*view_.snap, at.file);
   if (!u) return "?";
   const uint32_t line = u->source->line_of(at.span.begin) + 1;
-  const std::string text = fmt::format("{}:{}", std::string_view(u->sd_path).substr(u->sd_path.starts_with('/')), line);
+  const std::string text = fmt::format("{}:{}", file_label(*u->source), line);
   if (!markdown) return text;
   if (auto abs = view_.snap->disk.disk_path(u->sd_path))
     return fmt::format("[{}]({}#L{})", text, uri_of_path(*abs), line);

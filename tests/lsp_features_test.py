@@ -1,0 +1,240 @@
+#!/usr/bin/env python3
+"""The protocol test of `rrflint server`'s hover, completion and signature help, on a fresh copy of
+tests/lsp/features (a card with tools, a heater, a fan, a sensor, globals and vars), through tests/lsp_test.py's
+harness.
+
+  tests/lsp_features_test.py path/to/rrflint [test-name…]
+"""
+import os
+import sys
+
+from lsp_test import Server, check, line_of, main, uri_of, utf16  # noqa: F401 (Server: the harness's)
+
+CARD = os.path.join(os.path.dirname(os.path.abspath(__file__)), "lsp", "features")
+GCODES = "https://docs.duet3d.com/User_manual/Reference/Gcodes#"
+MARKDOWN = {"textDocument": {"hover": {"contentFormat": ["markdown", "plaintext"]},
+                             "completion": {"completionItem": {"documentationFormat": ["markdown"]}}}}
+
+
+def start(s, card, path="sys/config.g", caps=None):
+    """Initializes the server, opens a file of the card and waits for its diagnostics; its path and text."""
+    s.request("initialize", {"processId": None, "rootUri": None, "capabilities": MARKDOWN if caps is None else caps})
+    s.notify("initialized", {})
+    path = os.path.join(card, path)
+    text = s.open(path)
+    s.diagnostics(uri_of(path))
+    return path, text
+
+
+def at(s, method, path, line, character):
+    r = s.request(method, {"textDocument": {"uri": uri_of(path)}, "position": {"line": line, "character": character}})
+    check("result" in r, f"{method}: {r}")
+    return r["result"]
+
+
+def rng(line, start, end):
+    return {"start": {"line": line, "character": start}, "end": {"line": line, "character": end}}
+
+
+def lines(first, end):
+    """The range of lines [first, end)."""
+    return {"start": {"line": first, "character": 0}, "end": {"line": end, "character": 0}}
+
+
+def insert(s, path, line, new_text, version=2):
+    """Inserts `new_text` as a line before `line` and waits for the lint of that version."""
+    s.change(path, version, [{"range": rng(line, 0, 0), "text": new_text + "\n"}])
+    s.wait(lambda m: m.get("method") == "textDocument/publishDiagnostics" and m["params"]["uri"] == uri_of(path)
+           and m["params"].get("version") == version, f"the lint of version {version}")
+
+
+def labels(result):
+    return [i["label"] for i in result["items"]]
+
+
+def test_hover_g10(s, card):
+    config, text = start(s, card)
+    n, _ = line_of(text, "G10 P1 X-0.35")
+    h = at(s, "textDocument/hover", config, n, 1)
+    check(h["range"] == rng(n, 0, 3), f"the range of the code word {h['range']}")
+    v = h["contents"]["value"]
+    check(h["contents"]["kind"] == "markdown" and v.startswith("**G10**: "), f"markdown {h['contents']}")
+    check(f"]({GCODES}g10-" in v, f"the Duet link in {v!r}")
+    m, _ = line_of(text, 'M563 P1 S"Right"')
+    created = f"[sys/config.g:{m + 1}]({uri_of(config)}#L{m + 1})"
+    check(f'- tool 1 `"Right"` (created at {created})' in v, f"the tool and where it is created in {v!r}")
+    check("  - axis map: X→U Y→Y Z→Z" in v and "  - offsets: X0 Y0 Z0 U0\n" not in v and v.endswith(
+        "  - offsets: X0 Y0 Z0 U0"), f"the map and the offsets before the G10 in {v!r}")
+    # The next G10 of tool 1 sees the offsets the first one set.
+    n2, _ = line_of(text, "G10 P1 U0")
+    v = at(s, "textDocument/hover", config, n2, 0)["contents"]["value"]
+    check(f"offsets: X-0.35 Y0.2 Z0 U0 (last set at [sys/config.g:{n + 1}]" in v, f"the offsets after it in {v!r}")
+
+
+def test_hover_plaintext(s, card):
+    config, text = start(s, card, caps={})
+    n, _ = line_of(text, "G10 P1 X-0.35")
+    c = at(s, "textDocument/hover", config, n, 2)["contents"]
+    check(c["kind"] == "plaintext" and c["value"].startswith("G10: ") and "**" not in c["value"]
+          and "[" not in c["value"] and f"\n{GCODES}g10-" in c["value"], f"plain text {c}")
+    m, _ = line_of(text, 'M563 P1 S"Right"')
+    check(f'tool 1 "Right" (created at sys/config.g:{m + 1})' in c["value"], f"the tool in {c['value']!r}")
+
+
+def test_hover_m563(s, card):
+    config, text = start(s, card)
+    first, _ = line_of(text, 'M563 P1 S"Right"')
+    v = at(s, "textDocument/hover", config, first, 3)["contents"]["value"]
+    check(v.startswith("**M563**: ") and v.endswith("- creates tool 1"), f"the first M563 P1 {v!r}")
+    again, _ = line_of(text, 'M563 P1 S"Again"')
+    v = at(s, "textDocument/hover", config, again, 0)["contents"]["value"]
+    check(f'- re-creates tool 1 `"Right"` (created at [sys/config.g:{first + 1}]' in v
+          and v.endswith("its offsets and temperatures are reset"), f"the second {v!r}")
+
+
+def test_hover_none(s, card):
+    config, text = start(s, card)
+    check(at(s, "textDocument/hover", config, 0, 3) is None, "a comment line")
+    n, line = line_of(text, "tool 1 again")
+    check(at(s, "textDocument/hover", config, n, utf16(line[:line.index("again")])) is None, "a plain comment")
+    n, _ = line_of(text, "M1234")
+    check(at(s, "textDocument/hover", config, n, 1) is None, "an undocumented code")
+    n, _ = line_of(text, "G10 P1 X-0.35")
+    check(at(s, "textDocument/hover", config, n, 5) is None, "a parameter")
+    check(at(s, "textDocument/hover", config, n, 3) is None, "the blank after the word")
+
+
+def test_hover_rule(s, card):
+    config, text = start(s, card)
+    n, line = line_of(text, "disable=tool-redefined,RRF320")
+    for word in ("RRF320", "tool-redefined"):
+        start_at = utf16(line[:line.index(word)])  # after the emoji (two UTF-16 units) and the 'ü'
+        h = at(s, "textDocument/hover", config, n, start_at + 1)
+        check(h is not None and h["range"] == rng(n, start_at, start_at + len(word)), f"{word}'s range {h}")
+        v = h["contents"]["value"]
+        check(v.startswith("**RRF320** `tool-redefined` (warning)\n\n") and v.endswith("/tool-redefined.md)"),
+              f"the rule's hover {v!r}")
+    check(at(s, "textDocument/hover", config, n, utf16(line[:line.index("rrflint:")]) + 1) is None,
+          "the directive's keyword")
+
+
+def test_hover_entry_and_unrun(s, card):
+    park, text = start(s, card, "macros/Park.g")
+    n, _ = line_of(text, "G10 P1 Y0")
+    v = at(s, "textDocument/hover", park, n, 0)["contents"]["value"]
+    check('- tool 1 `"Again"`' in v and "offsets: X0 Y0 Z0 U0" in v, f"an entry starts from the end of boot: {v!r}")
+    notes = os.path.join(card, "macros", "notes.txt")
+    s.open(notes)
+    s.diagnostics(uri_of(notes))
+    v = at(s, "textDocument/hover", notes, 0, 0)["contents"]["value"]
+    check(v.startswith("**G10**: ") and "At this point" not in v, f"a file that does not run: the summary only {v!r}")
+
+
+def test_completion_codes(s, card):
+    config, text = start(s, card)
+    insert(s, config, 1, "")
+    items = at(s, "textDocument/completion", config, 1, 0)["items"]
+    by = {i["label"]: i for i in items}
+    check("G10" in by and "M563" in by, f"the codes {list(by)}")
+    g10 = by["G10"]
+    check(g10["kind"] == 3 and g10["detail"]
+          and g10["documentation"]["kind"] == "markdown" and GCODES in g10["documentation"]["value"], f"G10 {g10}")
+    s.change(config, 3, [{"range": rng(1, 0, 0), "text": "m5"}])
+    got = {i["label"]: i for i in at(s, "textDocument/completion", config, 1, 2)["items"]}
+    check("M563" in got and all(g.startswith("M5") for g in got), f"after 'm5': {list(got)}")
+    check(got["M563"]["textEdit"] == {"range": rng(1, 0, 2), "newText": "M563"}, f"the edit {got['M563']}")
+
+
+def test_completion_letters(s, card):
+    config, text = start(s, card)
+    n, line = line_of(text, "G10 P1 X-0.35")
+    got = at(s, "textDocument/completion", config, n, len("G10 P1 "))
+    got = labels(got)  # G10's letters from lint/boot/command_docs.cc, but those written
+    check("L" in got and not set(got) & set("PXYZ") and all(len(g) == 1 for g in got), f"letters not written {got}")
+    check(at(s, "textDocument/completion", config, n, len("G10 P1 X-0"))["items"] == [], "inside a value")
+
+
+def test_completion_tools(s, card):
+    config, text = start(s, card)
+    n, _ = line_of(text, 'M563 P1 S"Right"')
+    insert(s, config, n, "G10 P")
+    got = at(s, "textDocument/completion", config, n, 5)
+    check(labels(got) == ["P0"], f"before tool 1's M563: {labels(got)}")
+    check(got["items"][0]["textEdit"] == {"range": rng(n, 4, 5), "newText": "P0"} and "tool 0" in got["items"][0][
+        "detail"], f"the item {got['items'][0]}")
+    s.change(config, 3, [{"range": lines(n, n + 1), "text": ""}])  # the line moves after the M563 P1
+    insert(s, config, n + 1, "T", 4)
+    check(labels(at(s, "textDocument/completion", config, n + 1, 1)) == ["T0", "T1"], "T after tool 1's M563")
+
+
+def test_completion_devices(s, card):
+    config, text = start(s, card)
+    end = len(text.splitlines())
+    for version, (typed, want) in enumerate((("M143 H", ["H1"]), ("M308 S", ["S1"]), ("M106 P", ["P0"]),
+                                              ("M950 H2 C\"x\" T", ["T1"]), ("M106 X", [])), start=2):
+        s.change(config, version, [{"text": text + typed + "\n"}])
+        got = labels(at(s, "textDocument/completion", config, end, len(typed)))
+        check(got == want, f"after {typed!r}: {got} (want {want})")
+
+
+def test_completion_names(s, card):
+    homeall, text = start(s, card, "sys/homeall.g")
+    n, _ = line_of(text, "G1 X0")
+    insert(s, homeall, n, "echo var.sp")
+    got = at(s, "textDocument/completion", homeall, n, len("echo var.sp"))
+    check(labels(got) == ["speed"], f"vars in scope {labels(got)} (inner's block has ended)")
+    check(got["items"][0]["textEdit"] == {"range": rng(n, 9, 11), "newText": "speed"}, f"{got['items'][0]}")
+    s.change(homeall, 3, [{"range": rng(n, 5, 11), "text": "global."}])
+    check(labels(at(s, "textDocument/completion", homeall, n, 12)) == ["bedTemp", "toolsReady"],
+          "globals of the boot, not the one declared below")
+    config = os.path.join(card, "sys", "config.g")
+    ctext = s.open(config)
+    m, _ = line_of(ctext, 'M98 P"tools.g"')
+    insert(s, config, m, "if global.", 2)
+    check(labels(at(s, "textDocument/completion", config, m, 10)) == ["bedTemp"], "before tools.g runs")
+    s.change(config, 3, [{"range": lines(m, m + 1), "text": ""}])
+    insert(s, config, m + 1, "if global.", 4)
+    check(labels(at(s, "textDocument/completion", config, m + 1, 10)) == ["bedTemp", "toolsReady"], "after")
+
+
+def test_completion_macro_paths(s, card):
+    config, text = start(s, card)
+    end = len(text.splitlines())
+    s.change(config, 2, [{"text": text + 'M117 "😀" M98 P"\n'}])
+    check(labels(at(s, "textDocument/completion", config, end, 10)) == [], "M98 after another command's string")
+    s.change(config, 3, [{"text": text + 'M98 P"\n'}])
+    got = labels(at(s, "textDocument/completion", config, end, 6))
+    check({"config.g", "homeall.g", "tools.g"} <= set(got) and not any("/" in g for g in got), f"relative {got}")
+    s.change(config, 4, [{"text": text + 'M98 P"/mac\n'}])
+    got = at(s, "textDocument/completion", config, end, 10)
+    check(labels(got) == ["/macros/Park.g"], f"from the root {labels(got)}")
+    check(got["items"][0]["textEdit"] == {"range": rng(end, 6, 10), "newText": "/macros/Park.g"}, f"{got['items']}")
+
+
+def test_completion_comment(s, card):
+    config, text = start(s, card)
+    n, line = line_of(text, "tool 1 again")
+    check(at(s, "textDocument/completion", config, n, len(line))["items"] == [], "nothing in a comment")
+
+
+def test_signature_help(s, card):
+    config, text = start(s, card)
+    n, line = line_of(text, "G10 P1 X-0.35")
+    h = at(s, "textDocument/signatureHelp", config, n, line.index("X") + 2)
+    sig = h["signatures"][0]
+    # G10's letters and title from lint/boot/command_docs.cc: "G10 P L X …: <title>".
+    letters = [sig["label"][p["label"][0]:p["label"][1]] for p in sig["parameters"]]
+    check(sig["label"] == "G10 " + " ".join(letters) + ": " + sig["label"].split(": ", 1)[1] and "X" in letters
+          and letters[0] == "P" and sig["parameters"][0]["documentation"], f"the signature {sig}")
+    check(h["activeParameter"] == letters.index("X") and sig["activeParameter"] == letters.index("X"), f"X: {h}")
+    h = at(s, "textDocument/signatureHelp", config, n, len("G10 P1 "))
+    check("activeParameter" not in h, f"after a blank no letter is active: {h}")
+    check(at(s, "textDocument/signatureHelp", config, n, 2) is None, "on the word")
+    m, _ = line_of(text, "M1234")
+    check(at(s, "textDocument/signatureHelp", config, m, 7) is None, "an undocumented code")
+
+
+TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
+
+if __name__ == "__main__":
+    sys.exit(main(TESTS, CARD, __doc__, "lsp_features_test"))
