@@ -234,6 +234,23 @@ def test_signature_help(s, card):
     check(at(s, "textDocument/signatureHelp", config, m, 7) is None, "an undocumented code")
 
 
+def test_odd_positions(s, card):
+    config, text = start(s, card)
+    end = len(text.splitlines())
+    for line, character in ((end + 5, 0), (2, 10000), (0, 10 ** 9)):
+        check(at(s, "textDocument/hover", config, line, character) is None, f"hover at {line}:{character}")
+        check(at(s, "textDocument/signatureHelp", config, line, character) is None, f"signature at {line}:{character}")
+        at(s, "textDocument/completion", config, line, character)
+    other = os.path.join(card, "sys", "tools.g")  # not open
+    check(at(s, "textDocument/hover", other, 1, 0) is None, "a document that is not open")
+    check(at(s, "textDocument/completion", other, 1, 0)["items"] == [], "completion in a document not open")
+    r = s.request("textDocument/hover", {"textDocument": {"uri": uri_of(config)}})
+    check(r.get("error", {}).get("code") == -32602, f"no position: {r}")
+    r = s.request("textDocument/completion", {"textDocument": {"uri": uri_of(config)}, "position": {"line": -1,
+                                                                                                 "character": 0}})
+    check(r.get("error", {}).get("code") == -32602, f"a negative line: {r}")
+
+
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
 
 if __name__ == "__main__":

@@ -113,8 +113,14 @@ json rule_hover(const DocAt& d, bool md) {
 
 std::unique_ptr<DocAt> doc_at(const Workspace& ws, const json& params) {
   const json& p = params.at("position");
+  auto count = [&](const char* key) {  // a uinteger: nlohmann would take -1 as 2^32 - 1
+    const json& v = p.at(key);
+    if (!v.is_number_unsigned() || v.get<uint64_t>() > UINT32_MAX)
+      throw json::type_error::create(302, fmt::format("position.{} must be a uinteger", key), &v);
+    return v.get<uint32_t>();
+  };
   return DocAt::make(ws, params.at("textDocument").at("uri").get<std::string>(),
-                     Position{p.at("line").get<uint32_t>(), p.at("character").get<uint32_t>()});
+                     Position{count("line"), count("character")});
 }
 
 const CommandDoc* doc_of(const Command& c) {

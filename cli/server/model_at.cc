@@ -122,7 +122,13 @@ std::unique_ptr<DocAt> DocAt::make(const Workspace& ws, const std::string& uri, 
     d->own_parse_ = parse(*d->file_);
     d->parsed_ = &*d->own_parse_;
   }
-  d->offset_ = static_cast<uint32_t>(offset_of(text, pos));
+  // The file's line index finds the line (offset_of would scan every line before it).
+  const SourceFile& f = *d->file_;
+  if (pos.line >= f.line_count()) d->offset_ = f.size();
+  else {
+    const Span ls = f.line_span(pos.line);
+    d->offset_ = ls.begin + static_cast<uint32_t>(offset_of(f.slice(ls), Position{0, pos.character}));
+  }
   const LineTable& lines = d->parsed_->lines;
   uint32_t lo = 0, hi = static_cast<uint32_t>(lines.size());  // the last line that starts at or before the cursor
   while (hi - lo > 1) {
