@@ -92,6 +92,29 @@ def test_hover_m563(s, card):
           and v.endswith("its offsets and temperatures are reset"), f"the second {v!r}")
 
 
+def test_hover_devices(s, card):
+    config, text = start(s, card, caps={})
+    n, _ = line_of(text, 'M950 H1 C"e0heat" T1')
+    sensor, _ = line_of(text, "M308 S1")
+    v = at(s, "textDocument/hover", config, n, 0)
+    if v is not None:  # M950 has an entry in lint/boot/command_docs.cc
+        v = v["contents"]["value"]
+        check(f"  creates heater 1\n  sensor 1 thermistor (created at sys/config.g:{sensor + 1})" in v, f"M950 {v!r}")
+    end = len(text.splitlines())
+    s.change(config, 2, [{"text": text + "G10 P7 S200\nM569 P0.3 S1\nM584 X0 W5\nM143 H4 S1\nT1\n"}])
+    v = at(s, "textDocument/hover", config, end, 0)["contents"]["value"]
+    check(v.endswith("At this point of the boot:\n  tool 7 does not exist here"), f"a tool that does not exist {v!r}")
+    # The codes below show their facts once they have an entry in lint/boot/command_docs.cc; until then, no hover.
+    axes, _ = line_of(text, "M584")
+    again, _ = line_of(text, 'M563 P1 S"Again"')
+    for k, want in ((1, "\n  driver 0.3: moves axis U"),
+                    (2, f"\n  axis X exists: drivers 0 (set at sys/config.g:{axes + 1})\n  creates axis W"),
+                    (3, "\n  heater 4 does not exist here"),
+                    (4, f'\n  tool 1 "Again" (created at sys/config.g:{again + 1})\n    axis map: X→U Y→Y Z→Z')):
+        h = at(s, "textDocument/hover", config, end + k, 0)
+        check(h is None or want in h["contents"]["value"], f"line {end + k}: {h} (want {want!r})")
+
+
 def test_hover_none(s, card):
     config, text = start(s, card)
     check(at(s, "textDocument/hover", config, 0, 3) is None, "a comment line")

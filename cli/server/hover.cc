@@ -62,6 +62,7 @@ std::vector<std::string> facts(const DocAt& d, const Command& c, bool md) {
   if (d.point_runs() == Runs::No) return {"never runs here: a tool-change macro of a tool that does not exist"};
   const std::vector<const ObjectParam*> params = object_params(d.parsed(), c);
   for (const ObjectParam* op : params) object_facts(d, *s, c, *op, md, out);
+  for (std::string& l : drive_facts(d, *s, c, md)) out.push_back(std::move(l));
   if (params.empty() && c.is('G', 10) && is_tool_form(g10_form(d.parsed(), c, s, s->firmware))) {
     const ToolRef t = addressed_tool(d.parsed(), c, *s);  // no P: the current tool
     if (!t.known) out.push_back("the current tool is not known here");

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "lint/boot/commands.h"
+#include "lint/boot/model.h"
 #include "lint/render/model_tables.h"
 
 namespace rrflint::server {
@@ -148,6 +149,50 @@ std::vector<std::string> tool_details(const DocAt& d, const MachineState& s, int
                         model_text::fact(t->offsets[static_cast<size_t>(i)]));
   if (t->last_configured != kNoNode) offs += fmt::format(" (last set at {})", d.where(t->last_configured, code));
   out.push_back("offsets: " + offs);
+  return out;
+}
+
+std::vector<std::string> drive_facts(const DocAt& d, const MachineState& s, const Command& c, bool code) {
+  std::vector<std::string> out;
+  const ParsedFile& pf = d.parsed();
+  auto drivers = [](const std::vector<DriverId>& v) {
+    std::string t;
+    for (const DriverId& id : v) t += (t.empty() ? "" : ":") + id.str();
+    return t.empty() ? std::string("none") : t;
+  };
+  if (c.is('M', 584)) {
+    for (const Param& p : pf.params(c)) {
+      if (p.letter == 'E') {
+        out.push_back(
+            fmt::format("extruders before it: {}", s.extruders_known ? std::to_string(s.extruders) : "unknown"));
+        continue;
+      }
+      if (!p.letter || allowed_axis_letters().find(p.letter) == std::string_view::npos) continue;
+      const int i = s.axis_index(p.letter);
+      const std::string name = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
+      if (i < 0) {
+        out.push_back(fmt::format("creates axis {}", name));
+        continue;
+      }
+      const Axis& a = s.axes[static_cast<size_t>(i)];
+      const NodeId set = a.drivers_set != kNoNode ? a.drivers_set : a.created;
+      out.push_back(fmt::format("axis {} exists: drivers {} ({})", name, drivers(a.drivers),
+                                set == kNoNode ? "the default" : "set at " + d.where(set, code)));
+    }
+  } else if (c.is('M', 569)) {
+    const Val<std::vector<DriverId>> ids = get_driver_list(pf, c, 'P');
+    if (!ids.known()) return out;
+    const std::vector<DriverUse> uses = s.driver_uses();
+    for (const DriverId& id : ids.value) {
+      std::string what;
+      for (const DriverUse& u : uses)
+        if (u.driver == id)
+          what += fmt::format("{}{}", what.empty() ? "" : ", ",
+                              u.extruder ? fmt::format("extruder {}", u.index) : "axis " + axis_name(s, u.index));
+      out.push_back(
+          fmt::format("driver {}: {}", id.str(), what.empty() ? "moves no axis or extruder here" : "moves " + what));
+    }
+  }
   return out;
 }
 

@@ -40,4 +40,8 @@ bool objects_known(const MachineState& s, ObjKind k);
 /// Tool n's axis maps and offsets, as lines (for G10 P and T hovers); empty when it does not exist.
 std::vector<std::string> tool_details(const DocAt& d, const MachineState& s, int n, bool code);
 
+/// What an M584 (the axes it names: their drivers, or that it creates them) or an M569 (which axis or extruder
+/// each of its drivers moves) touches in `s`, as lines; empty for other commands.
+std::vector<std::string> drive_facts(const DocAt& d, const MachineState& s, const Command& c, bool code);
+
 }  // namespace rrflint::server
