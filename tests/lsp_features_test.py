@@ -85,7 +85,8 @@ def test_hover_m563(s, card):
     config, text = start(s, card)
     first, _ = line_of(text, 'M563 P1 S"Right"')
     v = at(s, "textDocument/hover", config, first, 3)["contents"]["value"]
-    check(v.startswith("**M563**: ") and v.endswith("- creates tool 1"), f"the first M563 P1 {v!r}")
+    check(v.startswith("**M563**: ") and "\n- creates tool 1\n- heater 1, sensor 1 (created at [sys/config.g:" in v
+          and "\n- fan 0 (created at [sys/config.g:" in v, f"the first M563 P1, its heater and fan {v!r}")
     again, _ = line_of(text, 'M563 P1 S"Again"')
     v = at(s, "textDocument/hover", config, again, 0)["contents"]["value"]
     check(f'- re-creates tool 1 `"Right"` (created at [sys/config.g:{first + 1}]' in v
@@ -198,6 +199,15 @@ def test_completion_devices(s, card):
         s.change(config, version, [{"text": text + typed + "\n"}])
         got = labels(at(s, "textDocument/completion", config, end, len(typed)))
         check(got == want, f"after {typed!r}: {got} (want {want})")
+
+
+def test_completion_utf16(s, card):
+    config, text = start(s, card)
+    n, line = line_of(text, "Düse 😀")
+    at_f = utf16(line[:line.index(" F0 ") + 1])  # after the emoji (two UTF-16 units) and the 'ü'
+    got = at(s, "textDocument/completion", config, n, at_f + 2)
+    check(labels(got) == ["F0"] and got["items"][0]["textEdit"]["range"] == rng(n, at_f, at_f + 2),
+          f"the fans of M563 F, replacing F0: {got}")
 
 
 def test_completion_names(s, card):
