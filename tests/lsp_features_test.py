@@ -90,7 +90,7 @@ def test_hover_m563(s, card):
     again, _ = line_of(text, 'M563 P1 S"Again"')
     v = at(s, "textDocument/hover", config, again, 0)["contents"]["value"]
     check(f'- re-creates tool 1 `"Right"` (created at [sys/config.g:{first + 1}]' in v
-          and v.endswith("its offsets and temperatures are reset"), f"the second {v!r}")
+          and "): its offsets and temperatures are reset\n" in v, f"the second {v!r}")
 
 
 def test_hover_devices(s, card):
