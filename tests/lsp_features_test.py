@@ -41,11 +41,16 @@ def lines(first, end):
     return {"start": {"line": first, "character": 0}, "end": {"line": end, "character": 0}}
 
 
-def insert(s, path, line, new_text, version=2):
-    """Inserts `new_text` as a line before `line` and waits for the lint of that version."""
-    s.change(path, version, [{"range": rng(line, 0, 0), "text": new_text + "\n"}])
+def edit(s, path, version, changes):
+    """Changes the document and waits for the lint of that version (the model answers are for the text linted)."""
+    s.change(path, version, changes)
     s.wait(lambda m: m.get("method") == "textDocument/publishDiagnostics" and m["params"]["uri"] == uri_of(path)
            and m["params"].get("version") == version, f"the lint of version {version}")
+
+
+def insert(s, path, line, new_text, version=2):
+    """Inserts `new_text` as a line before `line`, and waits for its lint."""
+    edit(s, path, version, [{"range": rng(line, 0, 0), "text": new_text + "\n"}])
 
 
 def labels(result):
@@ -102,7 +107,7 @@ def test_hover_devices(s, card):
         v = v["contents"]["value"]
         check(f"  creates heater 1\n  sensor 1 thermistor (created at sys/config.g:{sensor + 1})" in v, f"M950 {v!r}")
     end = len(text.splitlines())
-    s.change(config, 2, [{"text": text + "G10 P7 S200\nM569 P0.3 S1\nM584 X0 W5\nM143 H4 S1\nT1\n"}])
+    edit(s, config, 2, [{"text": text + "G10 P7 S200\nM569 P0.3 S1\nM584 X0 W5\nM143 H4 S1\nT1\n"}])
     v = at(s, "textDocument/hover", config, end, 0)["contents"]["value"]
     check(v.endswith("At this point of the boot:\n  tool 7 does not exist here"), f"a tool that does not exist {v!r}")
     # The codes below show their facts once they have an entry in lint/boot/command_docs.cc; until then, no hover.
@@ -154,6 +159,19 @@ def test_hover_entry_and_unrun(s, card):
     check(v.startswith("**G10**: ") and "At this point" not in v, f"a file that does not run: the summary only {v!r}")
 
 
+def test_no_model(s, card):
+    config, text = start(s, card)
+    with open(os.path.join(card, ".rrflint.toml"), "w", encoding="utf-8") as f:
+        f.write("select = [\n")  # broken: the card is not linted, so there is no model to answer from
+    s.notify("textDocument/didSave", {"textDocument": {"uri": uri_of(config)}})
+    s.wait(lambda m: m.get("method") == "window/showMessage", "the message about the broken config file")
+    n, _ = line_of(text, "G10 P1 X-0.35")
+    v = at(s, "textDocument/hover", config, n, 0)["contents"]["value"]
+    check(v.startswith("**G10**: ") and "At this point" not in v, f"the summary alone {v!r}")
+    check(labels(at(s, "textDocument/completion", config, n, len("G10 P"))) == [], "no tool numbers without a model")
+    check("M563" in labels(at(s, "textDocument/completion", config, n, 0)), "the codes still")
+
+
 def test_completion_codes(s, card):
     config, text = start(s, card)
     insert(s, config, 1, "")
@@ -163,7 +181,7 @@ def test_completion_codes(s, card):
     g10 = by["G10"]
     check(g10["kind"] == 3 and g10["detail"]
           and g10["documentation"]["kind"] == "markdown" and GCODES in g10["documentation"]["value"], f"G10 {g10}")
-    s.change(config, 3, [{"range": rng(1, 0, 0), "text": "m5"}])
+    edit(s, config, 3, [{"range": rng(1, 0, 0), "text": "m5"}])
     got = {i["label"]: i for i in at(s, "textDocument/completion", config, 1, 2)["items"]}
     check("M563" in got and all(g.startswith("M5") for g in got), f"after 'm5': {list(got)}")
     check(got["M563"]["textEdit"] == {"range": rng(1, 0, 2), "newText": "M563"}, f"the edit {got['M563']}")
@@ -186,7 +204,7 @@ def test_completion_tools(s, card):
     check(labels(got) == ["P0"], f"before tool 1's M563: {labels(got)}")
     check(got["items"][0]["textEdit"] == {"range": rng(n, 4, 5), "newText": "P0"} and "tool 0" in got["items"][0][
         "detail"], f"the item {got['items'][0]}")
-    s.change(config, 3, [{"range": lines(n, n + 1), "text": ""}])  # the line moves after the M563 P1
+    edit(s, config, 3, [{"range": lines(n, n + 1), "text": ""}])  # the line moves after the M563 P1
     insert(s, config, n + 1, "T", 4)
     check(labels(at(s, "textDocument/completion", config, n + 1, 1)) == ["T0", "T1"], "T after tool 1's M563")
 
@@ -196,7 +214,7 @@ def test_completion_devices(s, card):
     end = len(text.splitlines())
     for version, (typed, want) in enumerate((("M143 H", ["H1"]), ("M308 S", ["S1"]), ("M106 P", ["P0"]),
                                               ("M950 H2 C\"x\" T", ["T1"]), ("M106 X", [])), start=2):
-        s.change(config, version, [{"text": text + typed + "\n"}])
+        edit(s, config, version, [{"text": text + typed + "\n"}])
         got = labels(at(s, "textDocument/completion", config, end, len(typed)))
         check(got == want, f"after {typed!r}: {got} (want {want})")
 
@@ -217,7 +235,7 @@ def test_completion_names(s, card):
     got = at(s, "textDocument/completion", homeall, n, len("echo var.sp"))
     check(labels(got) == ["speed"], f"vars in scope {labels(got)} (inner's block has ended)")
     check(got["items"][0]["textEdit"] == {"range": rng(n, 9, 11), "newText": "speed"}, f"{got['items'][0]}")
-    s.change(homeall, 3, [{"range": rng(n, 5, 11), "text": "global."}])
+    edit(s, homeall, 3, [{"range": rng(n, 5, 11), "text": "global."}])
     check(labels(at(s, "textDocument/completion", homeall, n, 12)) == ["bedTemp", "toolsReady"],
           "globals of the boot, not the one declared below")
     config = os.path.join(card, "sys", "config.g")
@@ -225,7 +243,7 @@ def test_completion_names(s, card):
     m, _ = line_of(ctext, 'M98 P"tools.g"')
     insert(s, config, m, "if global.", 2)
     check(labels(at(s, "textDocument/completion", config, m, 10)) == ["bedTemp"], "before tools.g runs")
-    s.change(config, 3, [{"range": lines(m, m + 1), "text": ""}])
+    edit(s, config, 3, [{"range": lines(m, m + 1), "text": ""}])
     insert(s, config, m + 1, "if global.", 4)
     check(labels(at(s, "textDocument/completion", config, m + 1, 10)) == ["bedTemp", "toolsReady"], "after")
 
@@ -233,12 +251,12 @@ def test_completion_names(s, card):
 def test_completion_macro_paths(s, card):
     config, text = start(s, card)
     end = len(text.splitlines())
-    s.change(config, 2, [{"text": text + 'M117 "😀" M98 P"\n'}])
+    edit(s, config, 2, [{"text": text + 'M117 "😀" M98 P"\n'}])
     check(labels(at(s, "textDocument/completion", config, end, 10)) == [], "M98 after another command's string")
-    s.change(config, 3, [{"text": text + 'M98 P"\n'}])
+    edit(s, config, 3, [{"text": text + 'M98 P"\n'}])
     got = labels(at(s, "textDocument/completion", config, end, 6))
     check({"config.g", "homeall.g", "tools.g"} <= set(got) and not any("/" in g for g in got), f"relative {got}")
-    s.change(config, 4, [{"text": text + 'M98 P"/mac\n'}])
+    edit(s, config, 4, [{"text": text + 'M98 P"/mac\n'}])
     got = at(s, "textDocument/completion", config, end, 10)
     check(labels(got) == ["/macros/Park.g"], f"from the root {labels(got)}")
     check(got["items"][0]["textEdit"] == {"range": rng(end, 6, 10), "newText": "/macros/Park.g"}, f"{got['items']}")
