@@ -292,6 +292,13 @@ def test_odd_positions(s, card):
         check(at(s, "textDocument/hover", config, line, character) is None, f"hover at {line}:{character}")
         check(at(s, "textDocument/signatureHelp", config, line, character) is None, f"signature at {line}:{character}")
         at(s, "textDocument/completion", config, line, character)
+    long = 'M98 P"' + "a" * 300000  # no completion (and no stack overflow in a regular expression)
+    edit(s, config, 2, [{"text": text + long + "\n" + "G10 P" + "0" * 2030 + "\n"}])
+    check(at(s, "textDocument/completion", config, end, len(long))["items"] == [], "a line too long")
+    check(labels(at(s, "textDocument/completion", config, end + 1, 2035)) == ["P0", "P1"], "a long line within limits")
+    for line, character in ((end, len(long)), (end + 1, 2035)):
+        at(s, "textDocument/hover", config, line, character)
+        at(s, "textDocument/signatureHelp", config, line, character)
     other = os.path.join(card, "sys", "tools.g")  # not open
     check(at(s, "textDocument/hover", other, 1, 0) is None, "a document that is not open")
     check(at(s, "textDocument/completion", other, 1, 0)["items"] == [], "completion in a document not open")

@@ -16,6 +16,8 @@
 namespace rrflint::server {
 namespace {
 
+constexpr size_t kMaxLine = 2048;  // bytes before the cursor on its line
+
 enum Kind : int { kFunction = 3, kField = 5, kVariable = 6, kValue = 12, kFile = 17 };
 
 json item(std::string label, int kind, std::string detail) {
@@ -130,6 +132,9 @@ json completion(const Workspace& ws, const ClientCaps& caps, const json& params)
   std::unique_ptr<DocAt> d = doc_at(ws, params);
   if (!d || d->in_comment() || d->parsed().lines.size() == 0) return {{"isIncomplete", false}, {"items", items}};
   const std::string_view before = d->before_cursor();
+  // std::regex recurses once per byte it matches: a line longer than any RRF accepts gets no completion rather
+  // than a stack overflow.
+  if (before.size() > kMaxLine) return {{"isIncomplete", false}, {"items", items}};
   const std::string b(before);
   static const std::regex kPath(R"(^\s*(N\d+\s*)?[Mm]0*98\b[^;]*\s[Pp]"([^"]*)$)");
   static const std::regex kName(R"((^|[^A-Za-z0-9_.])(global|var)\.([A-Za-z0-9_]*)$)");
