@@ -288,9 +288,10 @@ def test_signature_help(s, card):
 def test_odd_positions(s, card):
     config, text = start(s, card)
     end = len(text.splitlines())
-    for line, character in ((end + 5, 0), (2, 10000), (0, 10 ** 9)):
+    for line, character in ((end + 5, 0), (2, 10000), (0, 10 ** 9)):  # past the end of a line: at its end
         check(at(s, "textDocument/hover", config, line, character) is None, f"hover at {line}:{character}")
-        check(at(s, "textDocument/signatureHelp", config, line, character) is None, f"signature at {line}:{character}")
+        sig = at(s, "textDocument/signatureHelp", config, line, character)
+        check(sig is None or line == 2, f"signature at {line}:{character}")
         at(s, "textDocument/completion", config, line, character)
     long = 'M98 P"' + "a" * 300000  # no completion (and no stack overflow in a regular expression)
     edit(s, config, 2, [{"text": text + long + "\n" + "G10 P" + "0" * 2030 + "\n"}])
