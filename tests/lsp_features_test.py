@@ -102,15 +102,12 @@ def test_hover_devices(s, card):
     config, text = start(s, card, caps={})
     n, _ = line_of(text, 'M950 H1 C"e0heat" T1')
     sensor, _ = line_of(text, "M308 S1")
-    v = at(s, "textDocument/hover", config, n, 0)
-    if v is not None:  # M950 has an entry in lint/boot/command_docs.cc
-        v = v["contents"]["value"]
-        check(f"  creates heater 1\n  sensor 1 thermistor (created at sys/config.g:{sensor + 1})" in v, f"M950 {v!r}")
+    v = at(s, "textDocument/hover", config, n, 0)["contents"]["value"]
+    check(f"  creates heater 1\n  sensor 1 thermistor (created at sys/config.g:{sensor + 1})" in v, f"M950 {v!r}")
     end = len(text.splitlines())
     edit(s, config, 2, [{"text": text + "G10 P7 S200\nM569 P0.3 S1\nM584 X0 W5\nM143 H4 S1\nT1\n"}])
     v = at(s, "textDocument/hover", config, end, 0)["contents"]["value"]
     check(v.endswith("At this point of the boot:\n  tool 7 does not exist here"), f"a tool that does not exist {v!r}")
-    # The codes below show their facts once they have an entry in lint/boot/command_docs.cc; until then, no hover.
     axes, _ = line_of(text, "M584")
     again, _ = line_of(text, 'M563 P1 S"Again"')
     for k, want in ((1, "\n  driver 0.3: moves axis U"),
@@ -118,7 +115,7 @@ def test_hover_devices(s, card):
                     (3, "\n  heater 4 does not exist here"),
                     (4, f'\n  tool 1 "Again" (created at sys/config.g:{again + 1})\n    axis map: X→U Y→Y Z→Z')):
         h = at(s, "textDocument/hover", config, end + k, 0)
-        check(h is None or want in h["contents"]["value"], f"line {end + k}: {h} (want {want!r})")
+        check(h is not None and want in h["contents"]["value"], f"line {end + k}: {h} (want {want!r})")
 
 
 def test_hover_none(s, card):
@@ -191,7 +188,7 @@ def test_completion_letters(s, card):
     config, text = start(s, card)
     n, line = line_of(text, "G10 P1 X-0.35")
     got = at(s, "textDocument/completion", config, n, len("G10 P1 "))
-    got = labels(got)  # G10's letters from lint/boot/command_docs.cc, but those written
+    got = labels(got)  # G10's letters from lint/boot/command_docs.h, but those written
     check("L" in got and not set(got) & set("PXYZ") and all(len(g) == 1 for g in got), f"letters not written {got}")
     check(at(s, "textDocument/completion", config, n, len("G10 P1 X-0"))["items"] == [], "inside a value")
 
@@ -273,7 +270,7 @@ def test_signature_help(s, card):
     n, line = line_of(text, "G10 P1 X-0.35")
     h = at(s, "textDocument/signatureHelp", config, n, line.index("X") + 2)
     sig = h["signatures"][0]
-    # G10's letters and title from lint/boot/command_docs.cc: "G10 P L X …: <title>".
+    # G10's letters and title from lint/boot/command_docs.h: "G10 P L X …: <title>".
     letters = [sig["label"][p["label"][0]:p["label"][1]] for p in sig["parameters"]]
     check(sig["label"] == "G10 " + " ".join(letters) + ": " + sig["label"].split(": ", 1)[1] and "X" in letters
           and letters[0] == "P" and sig["parameters"][0]["documentation"], f"the signature {sig}")
