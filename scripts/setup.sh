@@ -2,7 +2,7 @@
 # Installs rrflint's build and test dependencies from Debian packages.
 # Idempotent: does nothing when everything is present. Works as root or through sudo.
 #   scripts/setup.sh          build dependencies
-#   scripts/setup.sh --test   build + test dependencies
+#   scripts/setup.sh --test   build + test dependencies (with node and npm for the VS Code extension)
 set -euo pipefail
 
 pkgs=(cmake make g++ pkg-config libfmt-dev nlohmann-json3-dev catch2 libcli11-dev libtomlplusplus-dev)
@@ -10,6 +10,8 @@ if [[ "${1:-}" == "--test" ]]; then
   pkgs+=(python3 python3-jsonschema git pre-commit clang-format-14)
   # tests/clients/: the language server in real editors (neovim 0.7 headless, Emacs 28 with eglot in batch mode)
   pkgs+=(neovim emacs-nox elpa-eglot)
+  # The VS Code extension's build (scripts/vscode.sh, ctest -L vscode); a node from elsewhere brings its own npm.
+  command -v npm >/dev/null 2>&1 || pkgs+=(nodejs npm)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   pkgs+=(libbenchmark-dev hyperfine)
