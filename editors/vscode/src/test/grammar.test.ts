@@ -53,75 +53,20 @@ function has(prefix: string, text: string, scope: string, nth = 0): void {
   assert.ok(s.includes(scope), `'${text}' on '${prefix}…' has ${s.join(" ")}, not ${scope}`);
 }
 
-test("comments: ; to the end of the line, and ( … ) in a command", () => {
-  has("; sample", "; sample RRF G-code for the grammar test".slice(1), "comment.line.semicolon.rrf-gcode");
-  has("N10", " move", "comment.line.semicolon.rrf-gcode");
-  has("G28", "(home all)", "comment.block.parenthesis.rrf-gcode");
-  has("G28", "X", "variable.parameter.rrf-gcode");
-});
+// The expected scopes are data (test/sample.scopes.json): per topic, [line start, token text or [text, n], scope].
+type Row = [string, string | [string, number], string];
+const expected = JSON.parse(fs.readFileSync(path.join(root, "test", "sample.scopes.json"), "utf8")) as {
+  topics: Record<string, Row[]>;
+};
 
-test("commands, line numbers, parameter letters and numbers", () => {
-  has("N10", "N10", "constant.other.line-number.rrf-gcode");
-  has("N10", "G1", "support.function.gcode.rrf-gcode");
-  has("N10", "X", "variable.parameter.rrf-gcode");
-  has("N10", "10.5", "constant.numeric.rrf-gcode");
-  has("N10", "-2", "constant.numeric.rrf-gcode");
-  has("M584", "M584", "support.function.mcode.rrf-gcode");
-  has("M584", ":", "punctuation.separator.list.rrf-gcode");
-  has("M584", "0.1", "constant.numeric.rrf-gcode");
-  has("T-1", "T-1", "support.function.tcode.rrf-gcode");
-  // After the command, T is a parameter (M308's thermistor resistance), not a tool change.
-  has("M308", "T", "variable.parameter.rrf-gcode");
-  has("M308", "100000", "constant.numeric.rrf-gcode");
-  // An unquoted G or M ends a command and starts the next one, as in the firmware's parser.
-  has("G53", "G1", "support.function.gcode.rrf-gcode");
-  has("G53", "Z", "variable.parameter.rrf-gcode");
-  has("G53", "M400", "support.function.mcode.rrf-gcode");
-});
-
-test('strings, with "" for a quote', () => {
-  has("M550", '"', "string.quoted.double.rrf-gcode");
-  has("M550", '""', "constant.character.escape.quote.rrf-gcode");
-  has("M550", "Duet", "string.quoted.double.rrf-gcode");
-  has("M550", " printer", "string.quoted.double.rrf-gcode");
-  // The string ends at its closing quote: nothing after it is part of the string.
-  const last = scopes("M550", '"', 1);
-  assert.ok(last.includes("punctuation.definition.string.end.rrf-gcode"), last.join(" "));
-});
-
-test("{ } expressions inside a command", () => {
-  has("N10", "{", "punctuation.section.expression.begin.rrf-gcode");
-  has("N10", "global", "variable.language.global.rrf-gcode");
-  has("N10", "speed", "variable.other.global.rrf-gcode");
-  has("N10", "*", "keyword.operator.rrf-gcode");
-  has("N10", "60", "meta.expression.rrf-gcode");
-  has("N10", "}", "punctuation.section.expression.end.rrf-gcode");
-});
-
-test("meta-commands", () => {
-  has("if ", "if", "keyword.control.if.rrf-gcode");
-  has("if ", "move", "variable.other.object-model.rrf-gcode");
-  has("if ", "&&", "keyword.operator.rrf-gcode");
-  has("if ", "exists", "support.function.builtin.rrf-gcode");
-  has("var ", "var", "storage.type.var.rrf-gcode");
-  has("var ", "offset", "variable.other.definition.rrf-gcode");
-  has("var ", "S", "variable.other.param.rrf-gcode");
-  has("var ", "1.5e-1", "constant.numeric.rrf-gcode");
-  has("elif", "elif", "keyword.control.elif.rrf-gcode");
-  has("elif", "fileexists", "support.function.builtin.rrf-gcode");
-  has("set ", "set", "keyword.other.set.rrf-gcode");
-  has("set ", "offset", "variable.other.var.rrf-gcode");
-  has("else", "else", "keyword.control.else.rrf-gcode");
-  has("echo", "echo", "keyword.other.echo.rrf-gcode");
-  has("echo", ">>", "keyword.operator.redirect.rrf-gcode");
-  has("echo", "pi", "constant.language.rrf-gcode");
-  has("while", "while", "keyword.control.while.rrf-gcode");
-  has("while", "iterations", "constant.language.rrf-gcode");
-  has("break", "break", "keyword.control.break.rrf-gcode");
-  has("abort", "abort", "keyword.control.abort.rrf-gcode");
-  has("global ", "global", "storage.type.global.rrf-gcode");
-  has("global ", "0x1F", "constant.numeric.rrf-gcode");
-});
+for (const [topic, rows] of Object.entries(expected.topics)) {
+  test(topic, () => {
+    for (const [prefix, token, scope] of rows) {
+      const [text, nth] = typeof token === "string" ? [token, 0] : token;
+      has(prefix, text, scope, nth);
+    }
+  });
+}
 
 test("an unterminated string or brace does not run into the next line", () => {
   let stack = textmate.INITIAL;
