@@ -38,7 +38,8 @@ async function launch(): Promise<void> {
   const base = vscode.workspace.workspaceFolders?.[0]?.uri.fsPath;
   const binary = resolveBinary(setting, base, process.env);
   if (!binary.ok) {
-    await reportMissing(binary.message);
+    // Not awaited: the message stays up until the user answers, and a restart or deactivate must not wait for that.
+    void reportMissing(binary.message);
     return;
   }
   output.appendLine(`rrflint: starting ${binary.path} ${serverArgs().join(" ")}`);
@@ -90,7 +91,8 @@ async function restart(): Promise<void> {
 
 async function onConfigurationChange(event: vscode.ConfigurationChangeEvent): Promise<void> {
   if (event.affectsConfiguration("rrflint.path")) {
-    if (client || starting) {
+    // Also when no server runs because the binary was not found: the new path may be the fix.
+    if (client || starting || vscode.workspace.textDocuments.some((d) => d.languageId === LANGUAGE)) {
       await restart();
     }
     return;

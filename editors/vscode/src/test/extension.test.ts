@@ -84,6 +84,9 @@ function doc(file: string, languageId: string): unknown {
 }
 
 async function fire(kind: string, arg: unknown): Promise<void> {
+  if (kind === "open") {
+    fakeVscode.workspace.textDocuments.push(arg);
+  }
   await Promise.all(listeners[kind].map((f) => f(arg)));
 }
 
@@ -146,10 +149,12 @@ test("the extension, in a fake VS Code", { skip: process.platform === "win32" },
     assert.equal(log.errors[0][1], "Open Settings");
     await commands["rrflint.restartServer"]();
     assert.equal(log.errors.length, 2);
-    settings.path = "";
-    await commands["rrflint.restartServer"]();
+    // Setting a path that works starts the server, although none ran.
+    settings.path = rrflint;
+    await fire("config", changed("rrflint.path"));
     assert.equal(log.clients.length, 3);
     assert.ok(log.clients[2].running);
+    assert.equal(log.errors.length, 2);
   });
 
   await extension.deactivate();
