@@ -160,7 +160,7 @@ def test_initialize(s, card):
     caps = r["result"]["capabilities"]
     check(caps == {"positionEncoding": "utf-16",
                    "textDocumentSync": {"openClose": True, "change": 2, "save": {"includeText": False}},
-                   "codeActionProvider": {"codeActionKinds": ["quickfix"]}},
+                   "codeActionProvider": {"codeActionKinds": ["quickfix", "source.fixAll.rrflint"]}},
           f"capabilities: {caps}")
     check(r["result"]["serverInfo"]["name"] == "rrflint", "serverInfo")
     again = s.request("initialize", {"processId": None, "rootUri": None, "capabilities": {}})
@@ -419,7 +419,10 @@ def test_code_action_fix(s, card):
     check(a["edit"]["changes"] == {uri_of(config): want}, f"the fix's edit {a['edit']}")
     only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
         "range"], "context": {"diagnostics": [], "only": ["source.fixAll"]}})
-    check(only["result"] == [], f"only source.fixAll: {only}")
+    check([x["kind"] for x in only["result"]] == ["source.fixAll.rrflint"], f"only source.fixAll: {only}")
+    only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
+        "range"], "context": {"diagnostics": [], "only": ["refactor"]}})
+    check(only["result"] == [], f"only refactor: {only}")
     fixed = apply_action(s, config, text, a, 2)
     check("don''t" in fixed, "the apostrophe doubled")
     p = s.diagnostics(uri_of(config), "diagnostics after the code action")
@@ -450,9 +453,9 @@ def test_code_action_suppress(s, card):
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
 
 
-def run_one(binary, test):
+def run_one(binary, test, source=CARD):
     card = tempfile.mkdtemp(prefix="rrflint-lsp-")
-    shutil.copytree(CARD, card, dirs_exist_ok=True)
+    shutil.copytree(source, card, dirs_exist_ok=True)
     s = Server(binary)
     result = {}
 
@@ -476,19 +479,20 @@ def run_one(binary, test):
     return result.get("failure")
 
 
-def main():
+def main(tests=None, source=CARD, title="lsp_test", doc=__doc__):
+    """Runs `tests` (default: this file's), each on a fresh copy of the card `source`."""
     if len(sys.argv) < 2:
-        print(__doc__)
+        print(doc)
         return 2
     binary, names = sys.argv[1], sys.argv[2:]
     failed = 0
-    for test in TESTS:
+    for test in TESTS if tests is None else tests:
         if names and test.__name__ not in names and test.__name__[5:] not in names:
             continue
-        failure = run_one(binary, test)
+        failure = run_one(binary, test, source)
         print(f"{'ok  ' if failure is None else 'FAIL'} {test.__name__}" + (f": {failure}" if failure else ""))
         failed += failure is not None
-    print(f"lsp_test: {failed} failed")
+    print(f"{title}: {failed} failed")
     return 1 if failed else 0
 
 
