@@ -51,10 +51,11 @@ def publishes(messages, uri):
 
 
 def sync(s):
-    """A request the server answers once everything before it is handled: the messages up to its answer."""
+    """A request the server answers once everything before it is handled and linted (a textDocument/ request waits
+    for the lints that wait): the messages up to its answer."""
     s.next_id += 1
     msg_id = s.next_id
-    s.send({"jsonrpc": "2.0", "id": msg_id, "method": "rrflint/sync"})
+    s.send(action_request(msg_id, "file:///not/open.g"))
     return collect(s, lambda m: m.get("id") == msg_id and "method" not in m, "the answer to the sync request")
 
 
@@ -328,8 +329,10 @@ def test_lone_macro_beside_cards(s, card):
     init(s, folders=[card])
     s.open(lone)
     s.open(config_of(card))
-    check(codes(s.diagnostics(uri_of(lone))) == ["RRF501", "RRF116"], "the lone macro alone, as the CLI lints it")
-    check(codes(s.diagnostics(uri_of(config_of(card)))) == ALL, "the card beside it")
+    seen = sync(s)
+    check([codes(p) for p in publishes(seen, uri_of(lone))] == [["RRF501", "RRF116"]],
+          "the lone macro alone, as the CLI lints it")
+    check([codes(p) for p in publishes(seen, uri_of(config_of(card)))] == [ALL], "the card beside it")
 
 
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
