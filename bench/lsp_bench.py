@@ -12,7 +12,6 @@ Markdown table row for bench/RESULTS.md; exit 0 when the targets (median <= 5 ms
 are met, 1 otherwise.
 """
 import argparse
-import json
 import os
 import shutil
 import statistics
@@ -20,6 +19,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+from lsp_test import frame, read_message  # noqa: E402 (the test's framing: one reader of the protocol)
 
 N_MACROS = 30
 CONFIG_LINES = 300
@@ -66,32 +68,18 @@ class Client:
 
     def __init__(self, binary):
         self.proc = subprocess.Popen([binary, "server"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.DEVNULL, bufsize=0)
+                                     stderr=subprocess.DEVNULL)
         self.out = self.proc.stdout
 
     def send(self, obj):
-        body = json.dumps(obj).encode()
-        self.proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+        self.proc.stdin.write(frame(obj))
+        self.proc.stdin.flush()
 
     def read(self):
-        length = None
-        while True:
-            line = self.out.readline()
-            if not line:
-                raise SystemExit("the server closed its output")
-            line = line.strip()
-            if not line:
-                break
-            name, _, value = line.partition(b":")
-            if name.lower() == b"content-length":
-                length = int(value)
-        body = b""
-        while len(body) < length:
-            chunk = self.out.read(length - len(body))
-            if not chunk:
-                raise SystemExit("the server closed its output")
-            body += chunk
-        return json.loads(body)
+        m = read_message(self.out)
+        if m is None:
+            raise SystemExit("the server closed its output")
+        return m
 
     def wait(self, pred):
         while True:

@@ -37,6 +37,23 @@ def frame(obj):
     return b"Content-Length: %d\r\n\r\n" % len(body) + body
 
 
+def read_message(out):
+    """The next message the server wrote to `out` (a binary stream), parsed; None at the end of it."""
+    length = None
+    while True:
+        line = out.readline()
+        if not line:
+            return None
+        line = line.strip()
+        if not line:
+            break
+        name, _, value = line.partition(b":")
+        if name.lower() == b"content-length":
+            length = int(value)
+    body = out.read(length)
+    return None if len(body) < length else json.loads(body)
+
+
 def uri_of(path):
     return "file://" + urllib.parse.quote(path)
 
@@ -58,22 +75,11 @@ class Server:
         threading.Thread(target=lambda: self.stderr.extend(self.proc.stderr), daemon=True).start()
 
     def _read(self):
-        out = self.proc.stdout
         while True:
-            length = None
-            while True:
-                line = out.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                line = line.strip()
-                if not line:
-                    break
-                name, _, value = line.partition(b":")
-                if name.lower() == b"content-length":
-                    length = int(value)
-            body = out.read(length)
-            self.messages.put(json.loads(body))
+            m = read_message(self.proc.stdout)
+            self.messages.put(m)
+            if m is None:
+                return
 
     def write(self, data):
         self.proc.stdin.write(data)

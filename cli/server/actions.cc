@@ -36,8 +36,8 @@ bool wants(const json& context, std::string_view kind) {
 // The fix-all action for `file`: nullopt when it has no safe fix.
 std::optional<json> fix_all(const Snapshot& s, FileId file, const std::string& uri) {
   std::map<FileId, std::string> texts;
-  const size_t n =
-      cli::apply_fixes(s.sm, s.result.diagnostics, cli::FixOptions{}, [&](FileId f) { return f == file; }, texts);
+  const size_t n = cli::apply_fixes(
+      s.sm, s.result.diagnostics, cli::FixOptions{}, [&](FileId f) { return f == file; }, texts);
   auto it = texts.find(file);
   if (n == 0 || it == texts.end()) return std::nullopt;
   const SourceFile& f = s.sm.get(file);

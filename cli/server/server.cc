@@ -120,8 +120,7 @@ class Server {
   // A response to the server's own request.
   void answered(const json& msg) {
     if (msg.at("id") != kWatchRequest) return;
-    if (auto e = msg.find("error"); e != msg.end())
-      log(kLogWarning, "the client refused to watch files: " + e->dump());
+    if (auto e = msg.find("error"); e != msg.end()) log(kLogWarning, "the client refused to watch files: " + e->dump());
   }
 
   // A line for stderr and, once initialize is answered (LSP allows nothing earlier), for the client's log.
@@ -281,7 +280,7 @@ class Server {
   }
 
   Workspace ws_;
-  std::deque<Queued> queued_;   // requests waiting for a lint, in order
+  std::deque<Queued> queued_;  // requests waiting for a lint, in order
   json initial_settings_ = json::object();
   bool initialized_ = false, shutdown_ = false, broken_ = false;
   bool watch_ = false;  // the client registers didChangeWatchedFiles dynamically

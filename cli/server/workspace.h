@@ -114,7 +114,7 @@ class Workspace {
     std::string docs_base;            // of the last lint
   };
 
-  void place(Document& doc);  // finds the document's machine (and creates its entry)
+  void place(Document& doc);    // finds the document's machine (and creates its entry)
   void replace(Document& doc);  // places it again (a card made or gone on disk), re-linting what it left
   void schedule(const std::string& key, bool now);  // the machine waits: due now, or after the debounce
   cli::Job job_of(const MachineEntry& m, const Document* lone) const;
