@@ -6,6 +6,7 @@
 #   P3  a generated 100 MB file, against the npm package gcode-parser@2.2.0 and `wc -l` (the moonshot)
 #   P4  peak RSS (/usr/bin/time -v) at 1, 10 and 100 MB: is memory linear in the input?
 #   P5  in-process re-lint of a 300-line config (Google Benchmark, bench/bench_core.cc), target <= 1 ms
+#   P6  the findings-heavy input (../shared/tools/gen-corpus-big.py) at 10, 30, 100 MB, against gcode-parser
 #
 # Usage: bench/run.sh [--quick]     (--quick: fewer runs, for checking the script itself)
 # Needs: hyperfine, libbenchmark-dev, npm (scripts/setup.sh --bench installs them), python3.
@@ -88,6 +89,33 @@ done
 /usr/bin/time -v node "$here/gcode_parser_bench.js" "$out/gen-100M.g" >/dev/null 2>"$out/p4-node-100M.time" || true
 cat "$out/p4.tsv"
 
+# P6: the findings-heavy input: the corpus's real config.g files concatenated (../shared/tools/gen-corpus-big.py),
+# about 500 findings per MB, every one rendered as JSON. Targets (issue 17): 10x input -> <= 11x time, peak RSS
+# <= 3x input, >= 15x faster than gcode-parser on the 100 MB file.
+gen_big="$src/../shared/tools/gen-corpus-big.py"
+if [[ -f "$gen_big" ]]; then
+  echo "== P6: findings-heavy input (gen-corpus-big) at 10, 30, 100 MB"
+  for mb in 10 30 100; do
+    [[ -s "$out/big-${mb}M.g" ]] || python3 "$gen_big" "$out/big-${mb}M.g" "$mb" >/dev/null
+  done
+  hyperfine --warmup 1 --runs "$big_runs" --export-json "$out/p6.json" \
+    -n "rrflint big 10M" "${check[*]} $out/big-10M.g >/dev/null" \
+    -n "rrflint big 30M" "${check[*]} $out/big-30M.g >/dev/null" \
+    -n "rrflint big 100M" "${check[*]} $out/big-100M.g >/dev/null" \
+    -n "gcode-parser big 100M" "node $here/gcode_parser_bench.js $out/big-100M.g >/dev/null"
+  : >"$out/p6.tsv"
+  for mb in 10 30 100; do
+    /usr/bin/time -v "${check[@]}" "$out/big-${mb}M.g" >"$out/p6-${mb}M.json" 2>"$out/p6-${mb}M.time"
+    rss=$(awk -F': ' '/Maximum resident/ {print $2}' "$out/p6-${mb}M.time")
+    n=$(python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["diagnostics"]))' "$out/p6-${mb}M.json")
+    printf '%s\t%s\t%s\t%s\n' "${mb}M" "$(stat -c %s "$out/big-${mb}M.g")" "$rss" "$n" >>"$out/p6.tsv"
+    rm -f "$out/p6-${mb}M.json"
+  done
+  cat "$out/p6.tsv"
+else
+  echo "== P6 skipped: $gen_big not found"
+fi
+
 echo "== P5 and the core benchmarks (Google Benchmark)"
 "$build/rrflint_bench" --benchmark_repetitions=$((runs > 2 ? 10 : 2)) --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/bench_core.json" --benchmark_out_format=json
@@ -128,6 +156,19 @@ if os.path.exists(p4):
     for row in open(p4):
         size, nbytes, rss, secs = row.rstrip("\n").split("\t")
         lines.append(f"| {size} | {nbytes} | {int(rss)/1024:.1f} MiB | {int(rss)*1024/int(nbytes):.1f} | {secs} |")
+    lines.append("")
+hf("p6.json", "P6: findings-heavy input (gen-corpus-big), every finding as JSON")
+p6 = os.path.join(out, "p6.tsv")
+if os.path.exists(p6):
+    rows = [r.rstrip("\n").split("\t") for r in open(p6)]
+    lines += ["| input | bytes | findings | peak RSS | RSS / input |", "|---|---|---|---|---|"]
+    for size, nbytes, rss, n in rows:
+        lines.append(f"| {size} | {nbytes} | {n} | {int(rss)/1024:.1f} MiB | {int(rss)*1024/int(nbytes):.2f} |")
+    med = {r["command"]: r["median"] for r in json.load(open(os.path.join(out, "p6.json")))["results"]}
+    b10, b100 = int(rows[0][1]), int(rows[2][1])
+    t10, t100 = med["rrflint big 10M"], med["rrflint big 100M"]
+    lines.append(f"\n{b100 / b10:.1f}x input -> {t100 / t10:.1f}x time (target: 10x -> <= 11x); "
+                 f"gcode-parser / rrflint on 100 MB: {med['gcode-parser big 100M'] / t100:.1f}x (target >= 15x)")
     lines.append("")
 bc = os.path.join(out, "bench_core.json")
 if os.path.exists(bc):

@@ -1,6 +1,8 @@
 // RRF501 missing-macro: M98 names a file that is not on the SD card.
 #include <fmt/format.h>
 
+#include <map>
+
 #include "lint/card/card.h"
 #include "lint/engine/linter.h"
 #include "rules/macro_common.h"
@@ -101,12 +103,17 @@ bool guarded_by_fileexists(const ParsedFile& pf, size_t li, std::string_view sys
 }
 
 void check(const EndContext& cx, Sink& out) {
+  std::map<std::string, bool> dirs;  // top folder -> has a file on the card (asked once per folder, not per call)
   for (const GraphEvent& e : cx.graph.events) {
     if (e.kind != GraphEvent::Kind::MissingFile || !event_is_m98(cx, e)) continue;
     // A folder with no file at all on the card (a repository that keeps only sys/) says nothing about the SD card.
     const size_t second = e.path.find('/', 1);
     const std::string top = second == std::string::npos ? std::string() : e.path.substr(0, second);
-    if (!top.empty() && !cx.machine.has_dir(top)) continue;
+    if (!top.empty()) {
+      auto [d, fresh] = dirs.try_emplace(top, false);
+      if (fresh) d->second = cx.machine.has_dir(top);
+      if (!d->second) continue;
+    }
     // `if fileexists("x.g")` around `M98 P"x.g"`: the call runs only when the file is there.
     const ParsedFile& pf = cx.machine.unit(cx.graph.nodes[e.node].unit).parsed;
     if (guarded_by_fileexists(pf, event_command(cx, e).line, cx.options.sys_dir, to_lower(e.path))) continue;

@@ -8,6 +8,8 @@ set -euo pipefail
 pkgs=(cmake make g++ pkg-config libfmt-dev nlohmann-json3-dev catch2 libcli11-dev libtomlplusplus-dev)
 if [[ "${1:-}" == "--test" ]]; then
   pkgs+=(python3 python3-jsonschema git pre-commit clang-format-14)
+  # tests/clients/: the language server in real editors (neovim 0.7 headless, Emacs 28 with eglot in batch mode)
+  pkgs+=(neovim emacs-nox elpa-eglot)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   pkgs+=(libbenchmark-dev hyperfine)

@@ -138,6 +138,17 @@ TEST_CASE("graph: M505 changes the folder for later relative names", "[graph]") 
   CHECK(boot(*t) == ">/sys/config.g(boot) M505 M505 M98 >/sys/a.g(M98) M83 < <");
 }
 
+TEST_CASE("graph: an M505 whose folder would not fit RRF's 120-character path keeps the old folder", "[graph]") {
+  // "0:/sys/" + 22 x "abcd/" = 117 characters fits; the 23rd would make 122 (Platform::SetSysDir fails).
+  std::string config;
+  for (int i = 0; i < 30; ++i) config += "M505 P\"abcd\"\n";
+  config += "M98 P\"a.g\"\n";
+  std::string deep = "/sys";
+  for (int i = 0; i < 22; ++i) deep += "/abcd";
+  auto b = build({{"/sys/config.g", config}, {deep + "/a.g", "M83\n"}});
+  CHECK(boot(*b).ends_with("M98 >" + deep + "/a.g(M98) M83 < <"));
+}
+
 TEST_CASE("graph: cycles are reported and not followed", "[graph]") {
   auto b = build({
       {"/sys/config.g", "M98 P\"a.g\"\n"},

@@ -56,6 +56,9 @@ void NodeTable::push_commands(const Node& n, uint32_t count) {
 
 namespace {
 
+// MaxFilenameLength (Configuration.h): the longest path RRF builds, "0:" and the trailing "/" included.
+constexpr size_t kMaxFilenameLength = 120;
+
 class Builder {
  public:
   Builder(Machine& m, const GraphOptions& o) : m_(m), o_(o), sys_dir_(o.sys_dir) {}
@@ -313,7 +316,9 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     } else {  // M505
       auto p = get_string(pf, pf.commands[a], 'P');
       if (p.known() && !m) {
-        if (auto d = resolve_sd_path(sys_dir_, p.value)) sys_dir_ = *d;
+        // Platform::SetSysDir keeps the old folder when "0:" + the new one + "/" does not fit MaxFilenameLength (120):
+        // a relative M505 repeated in a loop or in concatenated configs cannot grow the path without bound.
+        if (auto d = resolve_sd_path(sys_dir_, p.value); d && d->size() + 3 <= kMaxFilenameLength) sys_dir_ = *d;
       }
     }
   }

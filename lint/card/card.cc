@@ -157,8 +157,9 @@ bool Machine::has_dir(std::string_view sd_dir) const {
   if (!key.ends_with("/")) key += '/';
   auto it = listing_.lower_bound(key);
   if (it != listing_.end() && it->first.starts_with(key)) return true;
-  for (const auto& [path, idx] : by_path_)
-    if (idx >= 0 && path.starts_with(key)) return true;
+  // Only the paths under the folder: the map is sorted, so they follow lower_bound(key).
+  for (auto p = by_path_.lower_bound(key); p != by_path_.end() && p->first.starts_with(key); ++p)
+    if (p->second >= 0) return true;
   return false;
 }
 

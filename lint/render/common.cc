@@ -40,6 +40,11 @@ std::string sanitize(std::string_view s) {
     else if (c >= 0x80) len = 0;  // invalid lead byte
     bool ok = len > 0 && i + len <= s.size();
     for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+    if (ok && len > 2) {  // no overlong forms, surrogates or code points above U+10FFFF: strictly valid UTF-8
+      const unsigned char c1 = static_cast<unsigned char>(s[i + 1]);
+      ok = !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 > 0x9F) && !(c == 0xF0 && c1 < 0x90) &&
+           !(c == 0xF4 && c1 > 0x8F);
+    }
     if (!ok) {
       out += "\xEF\xBF\xBD";
       ++i;

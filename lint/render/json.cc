@@ -1,93 +1,140 @@
 // `json`: one document, {"version": 1, "diagnostics": [...], "summary": {...}}. The shape is a promise to
 // editor integrations: fields are only ever added. Lines and columns are 1-based, columns count code points,
-// ends are exclusive. `diagnostic_json` is shared with `json-lines`.
-#include <nlohmann/json.hpp>
+// ends are exclusive. `write_diagnostic_json` is shared with `json-lines`.
+//
+// Written as a stream (json_writer.h), members in sorted order as the nlohmann tree printed them before; the text
+// is flushed to the stream every 64 KiB, so memory does not grow with the number of findings.
+#include <map>
 
+#include "lint/render/json_writer.h"
 #include "lint/render/render.h"
 
 namespace rrflint {
+namespace {
 
-nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std::string_view docs_base) {
-  using nlohmann::json;
-  const Range r = range_of(sm, d.loc);
-  json j;
-  j["code"] = d.code;
-  j["name"] = d.name;
-  j["severity"] = severity_name(d.severity);
-  j["message"] = sanitize(d.message);
-  j["file"] = d.loc.file == kNoFile ? "-" : sanitize(sm.get(d.loc.file).display_path());
-  j["line"] = r.start.line;
-  j["column"] = r.start.column;
-  j["end_line"] = r.end.line;
-  j["end_column"] = r.end.column;
-  j["url"] = rule_url(docs_base, d.name);
-  json notes = json::array();
-  for (const Note& n : d.notes) {
-    const Range nr = range_of(sm, n.loc);
-    json jn;
-    jn["file"] = n.loc.file == kNoFile ? "-" : sanitize(sm.get(n.loc.file).display_path());
-    jn["line"] = nr.start.line;
-    jn["column"] = nr.start.column;
-    jn["end_line"] = nr.end.line;
-    jn["end_column"] = nr.end.column;
-    jn["message"] = sanitize(n.message);
-    notes.push_back(jn);
-  }
-  j["notes"] = notes;
-  if (d.fix) {
-    json edits = json::array();
-    for (const Edit& e : d.fix->edits) {
-      const Range er = range_of(sm, e.loc);
-      edits.push_back({{"file", sanitize(sm.get(e.loc.file).display_path())},
-                       {"line", er.start.line},
-                       {"column", er.start.column},
-                       {"end_line", er.end.line},
-                       {"end_column", er.end.column},
-                       {"replacement", sanitize(e.replacement)}});
-    }
-    j["fix"] = {{"applicability", applicability_name(d.fix->applicability)},
-                {"message", sanitize(d.fix->title)},
-                {"edits", edits}};
-  } else {
-    j["fix"] = nullptr;
-  }
-  return j;
+// An edit or a note: {column, end_column, end_line, file, line, <text_key>: text}.
+void write_located(JsonWriter& w, JsonPaths& paths, const Location& loc, std::string_view text_key,
+                   std::string_view text) {
+  const Range r = range_of(paths.sources(), loc);
+  w.begin_object();
+  w.member("column", r.start.column);
+  w.member("end_column", r.end.column);
+  w.member("end_line", r.end.line);
+  w.member("file", paths.of(loc.file));
+  w.member("line", r.start.line);
+  w.member(text_key, sanitize(text));
+  w.end_object();
 }
+
+}  // namespace
+
+const std::string& JsonPaths::of(FileId id) {
+  auto [it, fresh] = paths_.try_emplace(id);
+  if (fresh) it->second = id == kNoFile ? "-" : sanitize(sm_.get(id).display_path());
+  return it->second;
+}
+
+void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d, std::string_view docs_base) {
+  const Range r = range_of(paths.sources(), d.loc);
+  w.begin_object();
+  w.member("code", d.code);
+  w.member("column", r.start.column);
+  w.member("end_column", r.end.column);
+  w.member("end_line", r.end.line);
+  w.member("file", paths.of(d.loc.file));
+  w.key("fix");
+  if (d.fix) {
+    w.begin_object();
+    w.member("applicability", applicability_name(d.fix->applicability));
+    w.key("edits");
+    w.begin_array();
+    for (const Edit& e : d.fix->edits) write_located(w, paths, e.loc, "replacement", e.replacement);
+    w.end_array();
+    w.member("message", sanitize(d.fix->title));
+    w.end_object();
+  } else {
+    w.null();
+  }
+  w.member("line", r.start.line);
+  w.member("message", sanitize(d.message));
+  w.member("name", d.name);
+  w.key("notes");
+  w.begin_array();
+  for (const Note& n : d.notes) write_located(w, paths, n.loc, "message", n.message);
+  w.end_array();
+  w.member("severity", severity_name(d.severity));
+  w.member("url", rule_url(docs_base, d.name));
+  w.end_object();
+}
+
+namespace {
+
+void write_machines(JsonWriter& w, const SourceManager& sm, const std::vector<MachineTarget>& machines) {
+  w.begin_array();
+  for (const MachineTarget& m : machines) {
+    const Target& t = m.target;
+    w.begin_object();
+    w.member("board", board_name(t.board));
+    w.member("board_reason", sanitize(t.board_reason));
+    w.key("firmware");
+    w.begin_object();
+    w.key("evidence");
+    w.begin_array();
+    for (const Evidence& e : t.evidence) {
+      w.begin_object();
+      w.member("file", sanitize(sm.get(e.loc.file).display_path()));
+      w.member("kind", e.kind == Evidence::Kind::Hint ? "hint" : "floor");
+      w.member("line", sm.get(e.loc.file).position(e.loc.span.begin).line);
+      w.member("version", floor_text(e.version));
+      w.member("what", sanitize(e.what));
+      w.end_object();
+    }
+    w.end_array();
+    w.member("floor", floor_text(t.floor));
+    w.member("reason", sanitize(t.reason));
+    w.member("source", source_name(t.source));
+    w.member("version", t.version.str());
+    w.end_object();
+    w.member("machine", sanitize(m.title));
+    w.end_object();
+  }
+  w.end_array();
+}
+
+}  // namespace
 
 void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                  const RenderOptions& o) {
-  using nlohmann::json;
-  json doc;
-  doc["version"] = 1;
-  json arr = json::array();
-  for (const Diagnostic& d : diags) arr.push_back(diagnostic_json(sm, d, o.docs_base));
-  doc["diagnostics"] = arr;
-  json machines = json::array();
-  for (const MachineTarget& m : o.machines) {
-    const Target& t = m.target;
-    json ev = json::array();
-    for (const Evidence& e : t.evidence)
-      ev.push_back({{"kind", e.kind == Evidence::Kind::Hint ? "hint" : "floor"},
-                    {"version", floor_text(e.version)},
-                    {"what", sanitize(e.what)},
-                    {"file", sanitize(sm.get(e.loc.file).display_path())},
-                    {"line", sm.get(e.loc.file).position(e.loc.span.begin).line}});
-    machines.push_back({{"machine", sanitize(m.title)},
-                        {"firmware",
-                         {{"version", t.version.str()},
-                          {"source", source_name(t.source)},
-                          {"floor", floor_text(t.floor)},
-                          {"reason", sanitize(t.reason)},
-                          {"evidence", ev}}},
-                        {"board", board_name(t.board)},
-                        {"board_reason", sanitize(t.board_reason)}});
+  std::string buf;
+  JsonWriter w(buf, 2);
+  JsonPaths paths(sm);
+  w.begin_object();
+  w.key("diagnostics");
+  w.begin_array();
+  for (const Diagnostic& d : diags) {
+    write_diagnostic_json(w, paths, d, o.docs_base);
+    if (buf.size() >= (64u << 10)) {
+      os << buf;
+      buf.clear();
+    }
   }
-  doc["machines"] = machines;
+  w.end_array();
+  w.key("machines");
+  write_machines(w, sm, o.machines);
   const Counts c = count(diags);
-  doc["summary"] = {{"errors", c.errors},   {"warnings", c.warnings},         {"infos", c.infos},
-                    {"fixable", c.fixable}, {"files_with_findings", c.files}, {"files_checked", o.files_checked},
-                    {"fixed", o.fixed}};
-  os << doc.dump(2, ' ', false, json::error_handler_t::replace) << "\n";
+  w.key("summary");
+  w.begin_object();
+  w.member("errors", c.errors);
+  w.member("files_checked", o.files_checked);
+  w.member("files_with_findings", c.files);
+  w.member("fixable", c.fixable);
+  w.member("fixed", o.fixed);
+  w.member("infos", c.infos);
+  w.member("warnings", c.warnings);
+  w.end_object();
+  w.member("version", 1);
+  w.end_object();
+  os << buf << "\n";
 }
 
 }  // namespace rrflint

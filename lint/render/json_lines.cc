@@ -1,16 +1,20 @@
 // `json-lines`: one diagnostic per line, the same objects as `json` prints in its "diagnostics" array (so a
 // consumer can stream them). No summary line: an empty output means no findings.
-#include <nlohmann/json.hpp>
-
+#include "lint/render/json_writer.h"
 #include "lint/render/render.h"
 
 namespace rrflint {
 
 void render_json_lines(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                        const RenderOptions& o) {
-  using nlohmann::json;
-  for (const Diagnostic& d : diags)
-    os << diagnostic_json(sm, d, o.docs_base).dump(-1, ' ', false, json::error_handler_t::replace) << "\n";
+  JsonPaths paths(sm);
+  std::string line;
+  for (const Diagnostic& d : diags) {
+    line.clear();
+    JsonWriter w(line, -1);
+    write_diagnostic_json(w, paths, d, o.docs_base);
+    os << line << "\n";
+  }
 }
 
 }  // namespace rrflint

@@ -8,7 +8,7 @@
 #pragma once
 
 #include <filesystem>
-#include <nlohmann/json_fwd.hpp>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -74,8 +74,21 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
                   const RenderOptions& o);
 void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                    const RenderOptions& o);
+/// The sanitized display path of each file, worked out once per file for a whole report.
+class JsonPaths {
+ public:
+  explicit JsonPaths(const SourceManager& sm) : sm_(sm) {}
+  const std::string& of(FileId id);  // "-" for kNoFile
+  const SourceManager& sources() const { return sm_; }
+
+ private:
+  const SourceManager& sm_;
+  std::map<FileId, std::string> paths_;
+};
+
+class JsonWriter;
 /// One diagnostic as the object `json` and `json-lines` print; its "url" is rule_url(docs_base, name).
-nlohmann::json diagnostic_json(const SourceManager& sm, const Diagnostic& d, std::string_view docs_base);
+void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d, std::string_view docs_base);
 
 /// Text with invalid UTF-8 replaced by U+FFFD and control characters escaped, safe for terminals and JSON.
 std::string sanitize(std::string_view s);
