@@ -42,7 +42,18 @@ struct CliOptions {
   std::string config_path;  // --config
   bool isolated = false;    // --isolated
   bool no_inline_suppressions = false;
+  // Beneath the config files (the language server's editor settings, cli/server/options.h): a config file's value
+  // wins where both set one. The firmware of a config file replaces base_firmware; base_selection is applied
+  // before a config file's selection layers (so its `select` replaces the base's), without its `ignore` when a
+  // config file sets one. The command-line options above win over both.
+  std::string base_firmware;
+  SelectionLayer base_selection;
 };
+
+/// Checks and normalises what the command line names before any file is read: --firmware parsed (and written
+/// back in its normal form), --board known, --select/--extend-select/--ignore split at commas and every name
+/// known. False with `err` on a bad value; `warn` gets what to tell the user anyway (a firmware newer than known).
+bool check_options(CliOptions& c, std::string& err, std::string& warn);
 
 /// The settings of one machine (or lone file): LintOptions plus what only the front end uses.
 struct Effective {

@@ -35,42 +35,13 @@ void map_large_inputs() {
   if (::sigaction(SIGBUS, &sa, nullptr) == 0) map_large_files(true);
 }
 
-std::vector<std::string> split_commas(const std::vector<std::string>& in) {
-  std::vector<std::string> out;
-  for (const auto& s : in) {
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, ','))
-      if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
 // Checks what the command line names before any file is read. False (with a message) on a bad value.
 bool validate(CliOptions& c) {
-  if (!c.firmware.empty()) {
-    std::string warn, err;
-    auto v = parse_target_version(c.firmware, &warn, &err);
-    if (!v) {
-      error("--firmware: " + err);
-      return false;
-    }
-    if (!warn.empty()) warning("--firmware: " + warn);
-    c.firmware = v->str();  // what the rest of the run reads back with Version::parse
-  }
-  if (!c.board.empty() && !parse_board(c.board)) {
-    error(fmt::format("--board: unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", c.board));
-    return false;
-  }
-  for (auto* list : {&c.select, &c.extend_select, &c.ignore}) {
-    *list = split_commas(*list);
-    for (const std::string& n : *list)
-      if (!rule_selector_known(n)) {
-        error(fmt::format("unknown rule '{}' (see `rrflint rule --all`)", n));
-        return false;
-      }
-  }
-  return true;
+  std::string err, warn;
+  const bool ok = check_options(c, err, warn);
+  if (!warn.empty()) warning(warn);
+  if (!ok) error(err);
+  return ok;
 }
 
 // Takes `--add-suppressions[=REASON]` out of `args`: the reason must be attached with '=', so a path after the

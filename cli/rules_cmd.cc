@@ -105,6 +105,7 @@ int run_rule(const RuleOptions& ro, const CliOptions& cli) {
                      {"default_enabled", m.default_enabled},
                      {"fix", fix_name(m.fix)},
                      {"fix_availability", fix_name(m.fix)},
+                     {"tag", tag_name(m.tag)},
                      {"summary", m.summary},
                      {"url", rule_url(eff.docs_base, m.name)},
                      {"docs", published_docs(m.docs)}});

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <sstream>
 
 #include "cli/cli.h"
 #include "lint/engine/rule.h"
@@ -17,7 +18,43 @@ std::string quoted_list(const std::vector<std::string>& v) {
   return out + "]";
 }
 
+std::vector<std::string> split_commas(const std::vector<std::string>& in) {
+  std::vector<std::string> out;
+  for (const auto& s : in) {
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+      if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
 }  // namespace
+
+bool check_options(CliOptions& c, std::string& err, std::string& warn) {
+  if (!c.firmware.empty()) {
+    auto v = parse_target_version(c.firmware, &warn, &err);
+    if (!warn.empty()) warn = "--firmware: " + warn;
+    if (!v) {
+      err = "--firmware: " + err;
+      return false;
+    }
+    c.firmware = v->str();  // what the rest of the run reads back with Version::parse
+  }
+  if (!c.board.empty() && !parse_board(c.board)) {
+    err = fmt::format("--board: unknown board '{}' (duet2, duet3-6hc, duet3-mini, maestro)", c.board);
+    return false;
+  }
+  for (auto* list : {&c.select, &c.extend_select, &c.ignore}) {
+    *list = split_commas(*list);
+    for (const std::string& n : *list)
+      if (!rule_selector_known(n)) {
+        err = fmt::format("unknown rule '{}' (see `rrflint rule --all`)", n);
+        return false;
+      }
+  }
+  return true;
+}
 
 void error(const std::string& msg) { std::cerr << "rrflint: error: " << msg << "\n"; }
 void warning(const std::string& msg) { std::cerr << "rrflint: warning: " << msg << "\n"; }
@@ -63,6 +100,11 @@ std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli)
         for (RuleDecision& d : out)
           if (d.rule->meta.code == c) d = {d.rule, false, layer.ignore.origin, "ignore"};
   };
+  // Beneath the config files, as a file they extend would be; a key the config files set replaces the base's.
+  SelectionLayer base = cli.base_selection;
+  if (cfg && std::any_of(cfg->selection.begin(), cfg->selection.end(), [](auto& l) { return l.ignore.value; }))
+    base.ignore = {};
+  apply(base);
   if (cfg)
     for (const SelectionLayer& l : cfg->selection) apply(l);
   SelectionLayer cl;
@@ -100,6 +142,7 @@ void Settings::resolve(std::shared_ptr<const Config> config, Effective& out) {
   }
   if (!cli_.firmware.empty()) out.lint.firmware = Version::parse(cli_.firmware);
   else if (cfg && cfg->firmware.value) out.lint.firmware = cfg->firmware.value;
+  else if (!cli_.base_firmware.empty()) out.lint.firmware = Version::parse(cli_.base_firmware);
   if (!cli_.board.empty()) out.lint.board = parse_board(cli_.board);
   else if (cfg && cfg->board.value) out.lint.board = cfg->board.value;
   if (!cli_.fail_on.empty()) out.fail_on = *parse_severity(cli_.fail_on);

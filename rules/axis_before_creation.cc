@@ -12,6 +12,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF201",
     .name = "axis-before-creation",
     .severity = Severity::Warning,
+    .tag = RuleTag::Unnecessary,
     .summary = "An axis letter is used before the M584 that creates the axis, so its value is silently ignored.",
     .docs = R"md(
 ## What it does

@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF215",
     .name = "device-without-pin",
     .severity = Severity::Error,
+    .tag = RuleTag::Unnecessary,
     .summary = "M950 H or F without a C pin for a heater or fan that does not exist yet: RRF creates nothing.",
     .docs = R"md(
 ## What it does

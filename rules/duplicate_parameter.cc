@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF116",
     .name = "duplicate-parameter",
     .severity = Severity::Warning,
+    .tag = RuleTag::Unnecessary,
     .summary = "A parameter letter given twice in one command; RRF ignores the second.",
     .docs = R"md(
 ## What it does

@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF311",
     .name = "g10-report-only",
     .severity = Severity::Info,
+    .tag = RuleTag::Unnecessary,
     .summary = "G10 P<n> with no axis and no R/S only reports the tool's settings.",
     .docs = R"md(
 ## What it does

@@ -12,6 +12,7 @@ constexpr RuleMeta kMeta{
     .name = "g10-temperature-form",
     .severity = Severity::Info,
     .fix = FixAvailability::Sometimes,
+    .tag = RuleTag::Deprecated,
     .summary = "G10 with R/S sets tool temperatures, which M568 does from RRF 3.3.",
     .docs = R"md(
 ## What it does

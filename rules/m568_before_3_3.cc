@@ -12,6 +12,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF328",
     .name = "m568-before-3.3",
     .severity = Severity::Warning,
+    .tag = RuleTag::Unnecessary,
     .summary = "M568 sets tool temperatures, but the target is RRF 3.2 or older, where M568 does nothing.",
     .docs = R"md(
 ## What it does

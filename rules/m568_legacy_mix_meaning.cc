@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF329",
     .name = "m568-legacy-mix-meaning",
     .severity = Severity::Warning,
+    .tag = RuleTag::Deprecated,
     .summary = "M568 P<n> S1 meant \"mixing on\" in RRF 1.x; from RRF 3.3 it sets an active temperature of 1 °C.",
     .docs = R"md(
 ## What it does

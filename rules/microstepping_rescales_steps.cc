@@ -13,6 +13,7 @@ constexpr RuleMeta kMeta{
     .name = "microstepping-rescales-steps",
     .severity = Severity::Info,
     .default_enabled = false,
+    .tag = RuleTag::Unnecessary,
     .summary = "An M92 is rescaled by a later M350 and then replaced by another M92, so it has no effect.",
     .docs = R"md(
 ## What it does

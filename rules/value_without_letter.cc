@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF120",
     .name = "value-without-letter",
     .severity = Severity::Warning,
+    .tag = RuleTag::Unnecessary,
     .summary = "A value with no parameter letter in front of it; RRF ignores it.",
     .docs = R"md(
 ## What it does

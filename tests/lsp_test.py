@@ -37,6 +37,23 @@ def frame(obj):
     return b"Content-Length: %d\r\n\r\n" % len(body) + body
 
 
+def read_message(out):
+    """The next message the server wrote to `out` (a binary stream), parsed; None at the end of it."""
+    length = None
+    while True:
+        line = out.readline()
+        if not line:
+            return None
+        line = line.strip()
+        if not line:
+            break
+        name, _, value = line.partition(b":")
+        if name.lower() == b"content-length":
+            length = int(value)
+    body = out.read(length)
+    return None if len(body) < length else json.loads(body)
+
+
 def uri_of(path):
     return "file://" + urllib.parse.quote(path)
 
@@ -58,22 +75,11 @@ class Server:
         threading.Thread(target=lambda: self.stderr.extend(self.proc.stderr), daemon=True).start()
 
     def _read(self):
-        out = self.proc.stdout
         while True:
-            length = None
-            while True:
-                line = out.readline()
-                if not line:
-                    self.messages.put(None)
-                    return
-                line = line.strip()
-                if not line:
-                    break
-                name, _, value = line.partition(b":")
-                if name.lower() == b"content-length":
-                    length = int(value)
-            body = out.read(length)
-            self.messages.put(json.loads(body))
+            m = read_message(self.proc.stdout)
+            self.messages.put(m)
+            if m is None:
+                return
 
     def write(self, data):
         self.proc.stdin.write(data)
@@ -160,7 +166,7 @@ def test_initialize(s, card):
     caps = r["result"]["capabilities"]
     check(caps == {"positionEncoding": "utf-16",
                    "textDocumentSync": {"openClose": True, "change": 2, "save": {"includeText": False}},
-                   "codeActionProvider": {"codeActionKinds": ["quickfix"]},
+                   "codeActionProvider": {"codeActionKinds": ["quickfix", "source.fixAll.rrflint"]},
                    "hoverProvider": True,
                    "completionProvider": {"triggerCharacters": [" ", ".", "\"", "/"]},
                    "signatureHelpProvider": {"triggerCharacters": [" "]}},
@@ -422,7 +428,10 @@ def test_code_action_fix(s, card):
     check(a["edit"]["changes"] == {uri_of(config): want}, f"the fix's edit {a['edit']}")
     only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
         "range"], "context": {"diagnostics": [], "only": ["source.fixAll"]}})
-    check(only["result"] == [], f"only source.fixAll: {only}")
+    check([x["kind"] for x in only["result"]] == ["source.fixAll.rrflint"], f"only source.fixAll: {only}")
+    only = s.request("textDocument/codeAction", {"textDocument": {"uri": uri_of(config)}, "range": a["diagnostics"][0][
+        "range"], "context": {"diagnostics": [], "only": ["refactor"]}})
+    check(only["result"] == [], f"only refactor: {only}")
     fixed = apply_action(s, config, text, a, 2)
     check("don''t" in fixed, "the apostrophe doubled")
     p = s.diagnostics(uri_of(config), "diagnostics after the code action")

@@ -1,6 +1,8 @@
 // Code actions (textDocument/codeAction) for the findings of the last lint of a machine (workspace.h): each
 // finding's fix as a `quickfix`, and a suppression comment on its line or for its whole file, written by the same
-// code as `rrflint check --add-suppressions` (lint/engine/suppress.h).
+// code as `rrflint check --add-suppressions` (lint/engine/suppress.h); and `source.fixAll.rrflint`: every safe fix of
+// the document at once, picked as `rrflint check --fix` picks them in one round (cli::apply_fixes: whole fixes,
+// never two that overlap; a fix that reaches into another file is left out), as one edit of the part that changes.
 #include <fmt/format.h>
 
 #include "cli/server/model_at.h"
@@ -17,13 +19,40 @@ bool meets(const json& a, const json& b) {
   return line_of(a.at("start")) <= line_of(b.at("end")) && line_of(b.at("start")) <= line_of(a.at("end"));
 }
 
-// Does the request's `context.only` (absent: every kind) admit `quickfix`?
-bool wants_quickfix(const json& context) {
+constexpr std::string_view kFixAll = "source.fixAll.rrflint";
+
+// Does the request's `context.only` (absent: every kind) admit `kind`? A kind admits its sub-kinds ("source"
+// admits "source.fixAll.rrflint").
+bool wants(const json& context, std::string_view kind) {
   auto only = context.find("only");
   if (only == context.end() || !only->is_array()) return true;
-  for (const json& k : *only)
-    if (k.is_string() && (k == "quickfix" || k == "")) return true;
+  for (const json& k : *only) {
+    if (!k.is_string()) continue;
+    const std::string& want = k.get_ref<const std::string&>();
+    if (want.empty() || kind == want || (kind.starts_with(want) && kind[want.size()] == '.')) return true;
+  }
   return false;
+}
+
+// The fix-all action for `file`: nullopt when it has no safe fix.
+std::optional<json> fix_all(const Snapshot& s, FileId file, const std::string& uri) {
+  std::map<FileId, std::string> texts;
+  const size_t n = cli::apply_fixes(
+      s.sm, s.result.diagnostics, cli::FixOptions{}, [&](FileId f) { return f == file; }, texts);
+  auto it = texts.find(file);
+  if (n == 0 || it == texts.end()) return std::nullopt;
+  const SourceFile& f = s.sm.get(file);
+  const std::string_view before = f.text(), after = it->second;
+  size_t head = 0, tail = 0;  // the bytes that stay at the start and at the end
+  while (head < before.size() && head < after.size() && before[head] == after[head]) ++head;
+  while (tail < before.size() - head && tail < after.size() - head &&
+         before[before.size() - 1 - tail] == after[after.size() - 1 - tail])
+    ++tail;
+  const Span changed{static_cast<uint32_t>(head), static_cast<uint32_t>(before.size() - tail)};
+  json edit{{"range", range_json(f, changed)}, {"newText", after.substr(head, after.size() - tail - head)}};
+  return json{{"title", fmt::format("fix all safe rrflint findings ({})", n)},
+              {"kind", kFixAll},
+              {"edit", {{"changes", {{uri, json::array({std::move(edit)})}}}}}};
 }
 
 // A WorkspaceEdit for `edits`; nullopt when one of them is in a file without a URI.
@@ -71,10 +100,14 @@ void add_suppressions(const Snapshot& s, const Diagnostic& d, const json& dj, js
 json Workspace::code_actions(const std::string& uri, const json& range, const json& context) const {
   json out = json::array();
   auto doc = docs_.find(uri);
-  if (doc == docs_.end() || !wants_quickfix(context)) return out;
+  if (doc == docs_.end()) return out;
   auto m = machines_.find(doc->second.machine);
   if (m == machines_.end() || !m->second.last) return out;
   const Snapshot& s = *m->second.last;
+  if (wants(context, kFixAll))
+    if (const FileUnit* u = find_unit(s, [&](FileId f) { return s.uri_of(f) == uri; }))
+      if (auto a = fix_all(s, u->source->id(), uri)) out.push_back(std::move(*a));
+  if (!wants(context, "quickfix")) return out;
   auto uri_of = [&](FileId id) { return s.uri_of(id); };
   for (const Diagnostic& d : s.result.diagnostics) {
     if (d.loc.file == kNoFile || s.uri_of(d.loc.file) != uri) continue;

@@ -93,13 +93,6 @@ Workspace::View Workspace::view(const std::string& uri) const {
   return v;
 }
 
-const FileUnit* unit_of(const Snapshot& s, FileId file) {
-  if (!s.result.machine) return nullptr;
-  for (uint32_t i = 0; i < s.result.machine->unit_count(); ++i)
-    if (s.result.machine->unit(i).source->id() == file) return &s.result.machine->unit(i);
-  return nullptr;
-}
-
 std::unique_ptr<DocAt> DocAt::make(const Workspace& ws, const std::string& uri, Position pos) {
   std::unique_ptr<DocAt> d(new DocAt());
   d->view_ = ws.view(uri);

@@ -90,7 +90,17 @@ class DocAt {
   mutable bool replayed_ = false;
 };
 
+/// The unit of the first file of a snapshot's machine that `is_it` accepts (by FileId), or null.
+template <class Pred>
+const FileUnit* find_unit(const Snapshot& s, Pred is_it) {
+  if (!s.result.machine) return nullptr;
+  for (uint32_t i = 0; i < s.result.machine->unit_count(); ++i)
+    if (is_it(s.result.machine->unit(i).source->id())) return &s.result.machine->unit(i);
+  return nullptr;
+}
 /// The unit of a file in a snapshot's machine, or null.
-const FileUnit* unit_of(const Snapshot& s, FileId file);
+inline const FileUnit* unit_of(const Snapshot& s, FileId file) {
+  return find_unit(s, [&](FileId f) { return f == file; });
+}
 
 }  // namespace rrflint::server

@@ -49,6 +49,8 @@ class MessageReader {
   /// that is not JSON: `parse_error` is then true); End at the end of the input, `problem` set when it cut a
   /// message short.
   Status next(json& out, std::string& problem, bool& parse_error);
+  /// Bytes read and not handed out yet (the next message may need no more reading).
+  bool buffered() const { return pos_ < buf_.size(); }
 
  private:
   bool fill();                                         // more bytes into buf_; false at the end

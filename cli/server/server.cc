@@ -1,20 +1,32 @@
 // `rrflint server`: the Language Server Protocol 3.17 over stdin and stdout, with the core library in-process.
 //
 // What it implements (and so advertises): the lifecycle (initialize, initialized, shutdown, exit), text sync
-// (didOpen, full and incremental didChange, didSave, didClose), pushed diagnostics, code actions (quickfix:
-// each finding's fix, and suppressing it on its line or in its file), and hover, completion and signature help
-// on commands with the model at that point of the boot (features.h). Every request is answered
-// at once, in order, so `$/cancelRequest` has nothing to cancel and is accepted and ignored. Unknown requests get
-// MethodNotFound; unknown notifications are ignored; a broken message gets a ParseError response or a log line
-// (stderr and window/logMessage), and the server reads on.
+// (didOpen, full and incremental didChange, didSave, didClose), pushed diagnostics (with the Unnecessary and
+// Deprecated tags of the rules that have one), code actions (quickfix: each finding's fix, and suppressing it on
+// its line or in its file; source.fixAll.rrflint: every safe fix of a document), hover, completion and signature
+// help on commands with the model at that point of the boot (features.h), the editor's settings
+// (initializationOptions, workspace/didChangeConfiguration: options.h) and watched files (registered with
+// client/registerCapability after `initialized` when the client can register them dynamically).
+//
+// The loop: messages are handled as they come; lints wait in the workspace (workspace.h) until the input has been
+// quiet for the debounce (didChange) or at all (the other events), which poll() on stdin tells. A request that
+// reads the machines' snapshots (every textDocument/ request) is queued while a lint waits, and answered once the
+// input is quiet and the lint done, in order; `$/cancelRequest` for a queued request answers it with
+// RequestCancelled, for any other id it is ignored. Unknown requests get MethodNotFound; unknown notifications are
+// ignored; a broken message gets a ParseError response or a log line (stderr and window/logMessage), and the
+// server reads on. Responses to the server's own requests are matched by id; an error response is logged.
+#include <poll.h>
 #include <signal.h>
 
+#include <cerrno>
+#include <deque>
 #include <iostream>
 #include <optional>
 
 #include "cli/cli.h"
 #include "cli/server/features.h"
 #include "cli/server/protocol.h"
+#include "cli/server/text.h"
 #include "cli/server/workspace.h"
 #include "frontend/disk.h"
 
@@ -22,6 +34,18 @@ namespace rrflint::server {
 namespace {
 
 constexpr int kLogError = 1, kLogWarning = 2;
+constexpr const char* kWatchRequest = "rrflint/watch-files";  // the id of the registerCapability request
+
+// What the server watches on disk: G-code files, the extensionless macros of a card's folders, the config file.
+json watchers() {
+  json w = json::array();
+  for (const char* glob : {"**/*.g", "**/sys/**", "**/macros/**", "**/filaments/**", "**/.rrflint.toml"})
+    w.push_back({{"globPattern", glob}});
+  return w;
+}
+
+// Does the request read the machines' snapshots, so that it waits for the lints that wait?
+bool reads_snapshot(const std::string& method) { return method.starts_with("textDocument/"); }
 
 class Server {
  public:
@@ -34,6 +58,10 @@ class Server {
     std::string problem;
     bool parse_error = false;
     for (;;) {
+      if (!reader.buffered() && !wait_for_input()) {
+        if (broken_) return 1;
+        continue;
+      }
       const MessageReader::Status st = reader.next(msg, problem, parse_error);
       if (st == MessageReader::Status::End) {
         if (!problem.empty()) log(kLogError, problem);
@@ -51,7 +79,51 @@ class Server {
   }
 
  private:
+  struct Queued {
+    json id;
+    std::string method;
+    json params;
+  };
+
   void send(const json& m) { broken_ = broken_ || !write_message(1, m); }
+
+  // With work waiting (lints, queued requests): waits for input until the work is due. True when there is input
+  // to read (or nothing waits); false when the work was done, or is not due yet, instead.
+  bool wait_for_input() {
+    int timeout = 0;
+    if (queued_.empty()) {
+      auto due = ws_.due();
+      if (!due) return true;
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(*due - Workspace::Clock::now());
+      timeout = static_cast<int>(std::max<int64_t>(left.count(), 0));
+    }
+    pollfd p{0, POLLIN, 0};
+    const int ready = ::poll(&p, 1, timeout);
+    if (ready < 0) return errno != EINTR;  // poll failed: reading blocks instead
+    if (ready > 0) return true;
+    if (queued_.empty() && Workspace::Clock::now() < *ws_.due()) return false;
+    answer_queued();
+    return false;
+  }
+
+  // Lints what waits, then answers the queued requests in order.
+  void answer_queued() {
+    ws_.flush();
+    for (Queued& q : std::exchange(queued_, {})) request(q.id, q.method, q.params);
+  }
+
+  void cancel(const json& id) {
+    auto it = std::find_if(queued_.begin(), queued_.end(), [&](const Queued& q) { return q.id == id; });
+    if (it == queued_.end()) return;  // answered already, or never asked: nothing to do
+    send(error_response(id, kRequestCancelled, "cancelled"));
+    queued_.erase(it);
+  }
+
+  // A response to the server's own request.
+  void answered(const json& msg) {
+    if (msg.at("id") != kWatchRequest) return;
+    if (auto e = msg.find("error"); e != msg.end()) log(kLogWarning, "the client refused to watch files: " + e->dump());
+  }
 
   // A line for stderr and, once initialize is answered (LSP allows nothing earlier), for the client's log.
   void log(int type, const std::string& msg) {
@@ -69,7 +141,8 @@ class Server {
     auto id = msg.find("id");
     if (method == msg.end()) {
       if (id == msg.end()) send(error_response(nullptr, kInvalidRequest, "a message without method or id"));
-      return std::nullopt;  // a response: the server sends no requests, so there is nothing to match it to
+      else answered(msg);
+      return std::nullopt;
     }
     const bool id_ok = id != msg.end() && (id->is_number_integer() || id->is_string());
     if (!method->is_string() || (id != msg.end() && !id_ok)) {
@@ -87,7 +160,12 @@ class Server {
     }
     const std::string name = method->get<std::string>();
     if (id_ok) {
-      request(*id, name, params);
+      if (initialized_ && !shutdown_ && reads_snapshot(name) && (ws_.waiting() || !queued_.empty()))
+        queued_.push_back({*id, name, params});
+      else {
+        if (name == "shutdown") answer_queued();
+        request(*id, name, params);
+      }
       return std::nullopt;
     }
     if (name == "exit") return shutdown_ ? 0 : 1;
@@ -102,7 +180,10 @@ class Server {
         if (initialized_) return send(error_response(id, kInvalidRequest, "initialize was already sent"));
         initialized_ = true;
         caps_ = ClientCaps::of(params.is_object() ? params.value("capabilities", json::object()) : json::object());
-        return send(response(id, initialize_result()));
+        watch_ = params.value("/capabilities/workspace/didChangeWatchedFiles/dynamicRegistration"_json_pointer, false);
+        send(response(id, initialize_result()));
+        if (auto o = params.find("initializationOptions"); o != params.end() && !o->is_null()) configure(*o, true);
+        return;
       }
       if (!initialized_) return send(error_response(id, kServerNotInitialized, "initialize first"));
       if (method == "shutdown") {
@@ -131,7 +212,7 @@ class Server {
              {{"positionEncoding", "utf-16"},
               {"textDocumentSync",
                {{"openClose", true}, {"change", 2 /* incremental */}, {"save", {{"includeText", false}}}}},
-              {"codeActionProvider", {{"codeActionKinds", json::array({"quickfix"})}}},
+              {"codeActionProvider", {{"codeActionKinds", json::array({"quickfix", "source.fixAll.rrflint"})}}},
               {"hoverProvider", true},
               {"completionProvider", {{"triggerCharacters", completion_triggers()}}},
               {"signatureHelpProvider", {{"triggerCharacters", signature_triggers()}}}}},
@@ -152,8 +233,16 @@ class Server {
         ws_.save(params.at("textDocument").at("uri").get<std::string>());
       } else if (method == "textDocument/didClose") {
         ws_.close(params.at("textDocument").at("uri").get<std::string>());
+      } else if (method == "$/cancelRequest") {
+        cancel(params.at("id"));
+      } else if (method == "initialized") {
+        if (watch_) send(watch_request());
+      } else if (method == "workspace/didChangeConfiguration") {
+        configure(params.at("settings"), false);
+      } else if (method == "workspace/didChangeWatchedFiles") {
+        files_changed(params.at("changes"));
       }
-      // initialized, $/cancelRequest (every request is already answered), $/setTrace and the rest: nothing to do.
+      // $/setTrace and the rest: nothing to do.
     } catch (const json::exception& e) {
       log(kLogError, method + ": bad params: " + e.what());
     } catch (const std::exception& e) {
@@ -161,9 +250,50 @@ class Server {
     }
   }
 
+  static json watch_request() {
+    json reg{{"id", "rrflint-watched-files"},
+             {"method", "workspace/didChangeWatchedFiles"},
+             {"registerOptions", {{"watchers", watchers()}}}};
+    return {{"jsonrpc", "2.0"},
+            {"id", kWatchRequest},
+            {"method", "client/registerCapability"},
+            {"params", {{"registrations", json::array({reg})}}}};
+  }
+
+  // The editor's settings: initializationOptions (`initial`), then each didChangeConfiguration, whose keys replace
+  // those of initializationOptions (a key it does not name keeps its initial value). A bad value is shown and
+  // changes nothing.
+  void configure(const json& settings, bool initial) {
+    json unwrapped = settings.is_object() && settings.contains("rrflint") ? settings.at("rrflint") : settings;
+    json merged = initial ? json::object() : initial_settings_;
+    if (unwrapped.is_object()) merged.update(unwrapped);
+    else if (!unwrapped.is_null()) merged = unwrapped;  // not an object: read_options says so
+    ServerOptions o;
+    std::string err, warn;
+    if (!read_options(merged, o, err, warn)) {
+      const std::string why = "rrflint: settings not applied: " + err;
+      log(kLogError, why);
+      send(notification("window/showMessage", {{"type", kLogError}, {"message", why}}));
+      return;
+    }
+    if (!warn.empty()) log(kLogWarning, "rrflint: " + warn);
+    if (initial) initial_settings_ = merged;
+    ws_.set_options(o);
+  }
+
+  void files_changed(const json& changes) {
+    std::vector<std::string> paths;
+    for (const json& c : changes)
+      if (auto p = path_of_uri(c.at("uri").get<std::string>())) paths.push_back(absolute_normal(*p));
+    ws_.files_changed(paths);
+  }
+
   Workspace ws_;
   ClientCaps caps_;
+  std::deque<Queued> queued_;  // requests waiting for a lint, in order
+  json initial_settings_ = json::object();
   bool initialized_ = false, shutdown_ = false, broken_ = false;
+  bool watch_ = false;  // the client registers didChangeWatchedFiles dynamically
 };
 
 }  // namespace

@@ -52,6 +52,8 @@ json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::st
          {"codeDescription", {{"href", rule_url(docs_base, d.name)}}},
          {"source", "rrflint"},
          {"message", d.message}};
+  if (const Rule* r = builtin_rules().find(d.code); r && r->meta.tag != RuleTag::None)
+    j["tags"] = json::array({r->meta.tag == RuleTag::Unnecessary ? 1 : 2});
   json related = json::array();
   for (const Note& n : d.notes) {
     if (n.loc.file == kNoFile) continue;
@@ -124,8 +126,8 @@ void Workspace::open(const std::string& uri, std::string text, int64_t version) 
   doc.text = std::move(text);
   doc.version = version;
   place(doc);
-  if (!before.empty() && before != doc.machine) lint(before);  // opened again elsewhere (should not happen)
-  lint(doc.machine);
+  if (!before.empty() && before != doc.machine) schedule(before, true);  // opened again elsewhere
+  schedule(doc.machine, true);
 }
 
 void Workspace::change(const std::string& uri, int64_t version, const json& changes) {
@@ -145,21 +147,24 @@ void Workspace::change(const std::string& uri, int64_t version, const json& chan
     apply_change(doc.text, pos(r.at("start")), pos(r.at("end")), c.at("text").get<std::string>());
   }
   doc.version = version;
-  lint(doc.machine);
+  schedule(doc.machine, false);
 }
 
 void Workspace::save(const std::string& uri) {
   auto it = docs_.find(uri);
   if (it == docs_.end()) return;
-  // Saving can make a card (a config.g written): the document may move to another machine.
-  const std::string before = it->second.machine;
-  place(it->second);
-  if (before != it->second.machine) {
-    if (std::none_of(docs_.begin(), docs_.end(), [&](const auto& d) { return d.second.machine == before; }))
-      clear(before);
-    else lint(before);
-  }
-  lint(it->second.machine);
+  replace(it->second);  // saving can make a card (a config.g written): the document may move to another machine
+  schedule(it->second.machine, true);
+}
+
+void Workspace::replace(Document& doc) {
+  const std::string before = doc.machine;
+  place(doc);
+  if (before == doc.machine) return;
+  if (std::none_of(docs_.begin(), docs_.end(), [&](const auto& d) { return d.second.machine == before; }))
+    clear(before);
+  else schedule(before, true);
+  schedule(doc.machine, true);
 }
 
 void Workspace::close(const std::string& uri) {
@@ -167,8 +172,38 @@ void Workspace::close(const std::string& uri) {
   if (it == docs_.end()) return;
   const std::string key = it->second.machine;
   docs_.erase(it);
-  if (std::any_of(docs_.begin(), docs_.end(), [&](const auto& d) { return d.second.machine == key; })) lint(key);
+  if (std::any_of(docs_.begin(), docs_.end(), [&](const auto& d) { return d.second.machine == key; }))
+    schedule(key, true);
   else clear(key);
+}
+
+void Workspace::schedule(const std::string& key, bool now) {
+  waiting_.insert(key);
+  due_ = now ? Clock::now() : Clock::now() + options_.debounce;
+}
+
+std::optional<Workspace::Clock::time_point> Workspace::due() const {
+  if (waiting_.empty()) return std::nullopt;
+  return due_;
+}
+
+void Workspace::flush() {
+  for (const std::string& key : std::exchange(waiting_, {})) lint(key);
+}
+
+void Workspace::set_options(const ServerOptions& o) {
+  options_ = o;
+  shown_.clear();  // a configuration error is shown again if it is still there
+  for (const auto& [key, m] : machines_) schedule(key, true);
+}
+
+void Workspace::files_changed(const std::vector<std::string>& paths) {
+  for (auto& [uri, d] : docs_) replace(d);
+  for (const std::string& p : paths) {
+    const bool config = fs::path(p).filename() == ".rrflint.toml";
+    for (const auto& [key, m] : machines_)
+      if (config || (m.card && relative_below(fs::path(p), m.card->root))) schedule(key, true);
+  }
 }
 
 // The job for a machine entry: the card with every file reported, or the lone document as standard input.
@@ -199,7 +234,7 @@ void Workspace::lint(const std::string& key) {
   }
   auto snap = std::make_unique<Snapshot>(job_of(m, lone));
   m.last.reset();
-  cli::Settings settings(cli_);  // afresh each time: .rrflint.toml may have changed
+  cli::Settings settings(options_.cli);  // afresh each time: .rrflint.toml may have changed
   cli::Effective eff;
   std::error_code ec;
   const fs::path dir =
@@ -273,6 +308,7 @@ void Workspace::publish(const std::string& uri, json diagnostics) {
 }
 
 void Workspace::clear(const std::string& key) {
+  waiting_.erase(key);
   auto it = machines_.find(key);
   if (it == machines_.end()) return;
   for (const std::string& uri : it->second.published) publish(uri, json::array());

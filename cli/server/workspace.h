@@ -3,10 +3,16 @@
 //
 // A document belongs to the machine `rrflint check FILE` would put it in (place_file: the nearest SD root or sys
 // folder); a file outside any card, and a document that is no file (an "untitled:" buffer), is a lone machine of its
-// own. Each change lints the document's machine at once, synchronously, so what is published is always the result
-// for the current text of every open buffer (no stale result, no debounce yet).
+// own.
+//
+// Lints wait: an event marks its machine as waiting and sets when it is due (didChange: the debounce after the
+// last change; didOpen, didSave, didClose, the settings and watched files: at once), and the server's loop calls
+// flush() once the input has been quiet until then, or before it answers a request that reads a snapshot. A lint
+// reads the current text of every open buffer and publishes with each document's current version, so a result
+// for an older version of a document is never published.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -16,6 +22,7 @@
 #include <string>
 
 #include "cli/cli.h"
+#include "cli/server/options.h"
 #include "cli/server/protocol.h"
 
 namespace rrflint::server {
@@ -73,7 +80,8 @@ class Workspace {
   void close(const std::string& uri);
   bool is_open(const std::string& uri) const { return docs_.count(uri) > 0; }
   const std::string* text(const std::string& uri) const;
-  /// The code actions for the findings of an open document that meet `range` (textDocument/codeAction).
+  /// The code actions for the findings of an open document that meet `range` (textDocument/codeAction), and
+  /// source.fixAll.rrflint for all its safe fixes.
   json code_actions(const std::string& uri, const json& range, const json& context) const;
   /// What a request about a position in a document reads (hover, completion, signature help: model_at.h): its
   /// text (null when it is not open), its SD path ("" for a lone document), the last lint of its machine (null when
@@ -85,6 +93,19 @@ class Workspace {
     std::string docs_base;
   };
   View view(const std::string& uri) const;  // defined in model_at.cc
+
+  using Clock = std::chrono::steady_clock;
+  /// The editor's settings: every machine is linted again.
+  void set_options(const ServerOptions& o);
+  const ServerOptions& options() const { return options_; }
+  /// When the waiting lints are due; none when no machine waits.
+  std::optional<Clock::time_point> due() const;
+  bool waiting() const { return !waiting_.empty(); }
+  /// Lints every machine that waits.
+  void flush();
+  /// workspace/didChangeWatchedFiles: files (absolute, normal) created, changed or deleted on disk. The machines
+  /// they belong to are linted again (every machine for a `.rrflint.toml`), and open documents placed again.
+  void files_changed(const std::vector<std::string>& paths);
 
  private:
   struct Document {
@@ -103,7 +124,9 @@ class Workspace {
     std::string docs_base;            // of the last lint
   };
 
-  void place(Document& doc);  // finds the document's machine (and creates its entry)
+  void place(Document& doc);    // finds the document's machine (and creates its entry)
+  void replace(Document& doc);  // places it again (a card made or gone on disk), re-linting what it left
+  void schedule(const std::string& key, bool now);  // the machine waits: due now, or after the debounce
   cli::Job job_of(const MachineEntry& m, const Document* lone) const;
   void lint(const std::string& key);
   void publish_all(const std::string& key, MachineEntry& m, std::map<std::string, json>& found);
@@ -113,7 +136,9 @@ class Workspace {
   std::function<void(json)> send_;
   std::function<void(int, const std::string&)> log_;
   std::string shown_;                             // the last configuration error shown to the user
-  cli::CliOptions cli_;                           // the defaults: settings come from .rrflint.toml alone
+  ServerOptions options_;                         // the editor's settings, beneath .rrflint.toml
+  std::set<std::string> waiting_;                 // machines to lint
+  Clock::time_point due_{};                       // when they are due
   std::map<std::string, Document> docs_;          // by URI as the client sent it
   std::map<std::string, MachineEntry> machines_;  // by key: the card's sys folder, or "lone:" + URI
 };

@@ -20,12 +20,21 @@ namespace rrflint {
 
 enum class FixAvailability : uint8_t { None, Sometimes, Always };
 
+/// How an editor may show the rule's findings (the LSP DiagnosticTag): Unnecessary (faded) for a command, or part
+/// of one, that RRF ignores or that has no effect; Deprecated (struck through) for a form RRF has deprecated.
+enum class RuleTag : uint8_t { None, Unnecessary, Deprecated };
+/// "none", "unnecessary", "deprecated".
+constexpr std::string_view tag_name(RuleTag t) {
+  return t == RuleTag::Unnecessary ? "unnecessary" : t == RuleTag::Deprecated ? "deprecated" : "none";
+}
+
 struct RuleMeta {
   std::string_view code;  // "RRF301"
   std::string_view name;  // "g10-tool-before-definition"
   Severity severity = Severity::Warning;
   bool default_enabled = true;
   FixAvailability fix = FixAvailability::None;
+  RuleTag tag = RuleTag::None;
   std::string_view summary;  // one sentence, also the first line of the docs
   std::string_view docs;  // Markdown: What it does / Why is this bad? / Example / Use instead / Fix safety / References
 };

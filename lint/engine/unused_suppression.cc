@@ -10,6 +10,7 @@ constexpr RuleMeta kMeta{
     .name = "unused-suppression",
     .severity = Severity::Info,
     .fix = FixAvailability::Always,
+    .tag = RuleTag::Unnecessary,
     .summary = "A suppression comment that suppresses nothing.",
     .docs = R"md(
 ## What it does

@@ -91,6 +91,19 @@ std::string published_docs(std::string_view docs) {
   return out;
 }
 
+namespace {
+
+// What an editor shows of a tagged rule's findings (docs/editors.md, "Diagnostic tags").
+std::string tag_sentence(RuleTag t) {
+  if (t == RuleTag::None) return "";
+  return fmt::format(
+      "In an editor (`rrflint server`) its findings carry the LSP tag *{}*, which most editors show as {}.\n\n",
+      t == RuleTag::Unnecessary ? "Unnecessary" : "Deprecated",
+      t == RuleTag::Unnecessary ? "faded text: the command, or the part of it, has no effect" : "struck-through text");
+}
+
+}  // namespace
+
 std::string rule_page(const Rule& r) {
   const RuleMeta& m = r.meta;
   std::string docs = published_docs(m.docs);
@@ -105,7 +118,7 @@ std::string rule_page(const Rule& r) {
   return fmt::format(
       "{banner}\n# {name} ({code})\n\n{summary}\n\n"
       "| code | name | default severity | enabled by default | fix |\n|---|---|---|---|---|\n"
-      "| `{code}` | `{name}` | {sev} | {on} | {fix} |\n\n{docs}\n\n"
+      "| `{code}` | `{name}` | {sev} | {on} | {fix} |\n\n{tag}{docs}\n\n"
       "## Configuration\n"
       "Suppress one finding with a comment on its line, `; rrflint: disable={name}` (see the README, "
       "\"Suppressing findings\"). Switch the rule off with `ignore = [\"{name}\"]` in `.rrflint.toml`, "
@@ -113,7 +126,7 @@ std::string rule_page(const Rule& r) {
       "`--ignore {code}`, `--select {code}`.\n",
       fmt::arg("banner", kBanner), fmt::arg("name", m.name), fmt::arg("code", m.code), fmt::arg("summary", m.summary),
       fmt::arg("sev", severity_name(m.severity)), fmt::arg("on", m.default_enabled ? "yes" : "no (opt-in)"),
-      fmt::arg("fix", fix), fmt::arg("docs", docs),
+      fmt::arg("fix", fix), fmt::arg("docs", docs), fmt::arg("tag", tag_sentence(m.tag)),
       fmt::arg("enable", m.default_enabled ? "switch it back on with `extend-select`"
                                            : "switch it on with `extend-select = [\"" + std::string(m.name) + "\"]`"));
 }
