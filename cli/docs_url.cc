@@ -15,7 +15,7 @@
 #include <cctype>
 
 #ifdef _WIN32
-#include <windows.h>
+#include "frontend/win32.h"
 #endif
 
 #include "cli/cli.h"

@@ -3,8 +3,14 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
+#include "frontend/win32.h"
+#else
 #include <signal.h>
 #include <unistd.h>
+#endif
 
 #include <algorithm>
 #include <fstream>
@@ -22,6 +28,21 @@ using namespace rrflint::cli;
 
 namespace {
 
+#ifdef _WIN32
+// Windows: files are read, never mapped (lint/base/huge_pages.h maps on Linux only). Standard input and output
+// are binary, so `--fix -` and the LSP keep the bytes (no CRLF translation), and the console is asked to
+// understand the ANSI colour codes (Windows 10 and later; where it cannot, --color auto sees no terminal).
+void map_large_inputs() {
+  _setmode(_fileno(stdin), _O_BINARY);
+  _setmode(_fileno(stdout), _O_BINARY);
+  for (DWORD id : {STD_OUTPUT_HANDLE, STD_ERROR_HANDLE}) {
+    const HANDLE h = GetStdHandle(id);
+    DWORD mode = 0;
+    if (h != INVALID_HANDLE_VALUE && GetConsoleMode(h, &mode))
+      SetConsoleMode(h, mode | ENABLE_VIRTUAL_TERMINAL_PROCESSING);
+  }
+}
+#else
 // Large input files are mapped rather than copied (read_text). If another program cuts such a file short while
 // it is linted, reading the lost part raises SIGBUS: report that as an I/O error (exit 2), not as a crash.
 extern "C" void on_sigbus(int) {
@@ -36,6 +57,7 @@ void map_large_inputs() {
   sigemptyset(&sa.sa_mask);
   if (::sigaction(SIGBUS, &sa, nullptr) == 0) map_large_files(true);
 }
+#endif
 
 std::vector<std::string> split_commas(const std::vector<std::string>& in) {
   std::vector<std::string> out;

@@ -9,7 +9,7 @@ pkgs=(cmake make g++ pkg-config libfmt-dev nlohmann-json3-dev catch2 libcli11-de
 if [[ "${1:-}" == "--test" ]]; then
   pkgs+=(python3 python3-jsonschema git pre-commit clang-format-14)
   pkgs+=(dpkg-dev groff-base man-db)  # tests/install_test.sh: cpack's .deb (dpkg-shlibdeps), the man page (groff, man -l)
-  pkgs+=(g++-mingw-w64-x86-64-posix wine64 zip)  # scripts/windows.sh: the Windows build, run under wine, zipped
+  pkgs+=(g++-mingw-w64-x86-64-posix wine64 zip unzip)  # scripts/windows.sh: the Windows build, zipped, run under wine
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   pkgs+=(libbenchmark-dev hyperfine)
