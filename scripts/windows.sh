@@ -11,6 +11,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 src=$(pwd)
 BUILD=${BUILD_DIR:-build-windows}
+mkdir -p "$BUILD" && BUILD=$(cd "$BUILD" && pwd)
 NATIVE=${NATIVE:-build/rrflint}
 test=1
 [[ ${1:-} == --no-test ]] && test=0
@@ -39,10 +40,12 @@ wine=$(command -v wine64 || command -v wine || ls /usr/lib/wine/wine64 2>/dev/nu
 [[ -n $wine ]] || { echo "windows: wine64 is missing (scripts/setup.sh --test)" >&2; exit 3; }
 [[ -x $NATIVE ]] || cmake --build "$(dirname "$NATIVE")" --target rrflint >/dev/null
 start=$SECONDS
-export WINEPREFIX=$src/$BUILD/wineprefix WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
-# The test runs the exe from the unpacked zip, as a user would.
-unpacked=$BUILD/unpacked
-rm -rf "$unpacked" && mkdir -p "$unpacked" && (cd "$unpacked" && unzip -q "../$name.zip")
+export WINEPREFIX=$BUILD/wineprefix WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml="
+# The test runs the exe from the unpacked zip, as a user would, outside the build folder (a binary below it links
+# the source tree's pages, cli/docs_url.cc).
+unpacked=$(mktemp -d)
+trap 'rm -rf "$unpacked"' EXIT
+(cd "$unpacked" && unzip -q "$BUILD/$name.zip")
 exe=$unpacked/$name/rrflint.exe
 out=$BUILD/wine-out
 mkdir -p "$out"
