@@ -1,7 +1,6 @@
 // `rrflint check`: plan the jobs, lint each machine with its own settings, apply fixes (--fix, --diff) or add
 // suppressions (--add-suppressions), render, and choose the exit code.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -13,6 +12,7 @@
 #include <unordered_map>
 
 #include "cli/cli.h"
+#include "frontend/platform.h"
 #include "lint/base/parallel.h"
 #include "lint/base/trace.h"
 #include "lint/engine/suppress.h"

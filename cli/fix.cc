@@ -1,9 +1,6 @@
 // Applying fixes: conflict-free selection (whole fixes only), line-ending preservation, atomic writes that
 // never lose data, and unified diffs for --diff.
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -11,6 +8,7 @@
 #include <tuple>
 
 #include "cli/cli.h"
+#include "frontend/platform.h"
 
 namespace rrflint::cli {
 namespace {
@@ -98,20 +96,20 @@ bool write_atomic(const fs::path& path, const std::string& expected, const std::
     if (ec) return fail("a symbolic link that leads nowhere: not written");
     if (root) {
       const fs::path real_root = fs::canonical(*root, ec);
-      if (ec || !path_below(target.native(), real_root.native()))
+      if (ec || !path_below(target.string(), real_root.string()))
         return fail(fmt::format("a symbolic link to {}, outside the linted folder: not written", target.string()));
     }
   }
   struct stat st {};
-  if (::stat(target.c_str(), &st) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
+  if (::stat(target.string().c_str(), &st) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
   if (!S_ISREG(st.st_mode)) return fail("not a regular file: not written");
   // A file the user made read-only stays as it is, root or not: a rename would replace it regardless of its mode.
   if ((st.st_mode & 0222) == 0) return fail("read-only: not written (make it writable to let --fix change it)");
   // Without root, a file this user could not write in place is not replaced through the folder either.
-  if (::geteuid() != 0 && ::access(target.c_str(), W_OK) != 0)
+  if (::geteuid() != 0 && ::access(target.string().c_str(), W_OK) != 0)
     return fail(fmt::format("not writable ({}): not written", std::strerror(errno)));
   std::string now_err;
-  auto now = read_file(target, &now_err);
+  auto now = read_file(target.string(), &now_err);
   if (!now) return fail(now_err + ": not written");
   if (*now != expected) return fail("changed on disk while rrflint was running: not written");
 
@@ -145,10 +143,10 @@ bool write_atomic(const fs::path& path, const std::string& expected, const std::
   if (!kept) return give_up("cannot keep its owner, group or mode: not written");
   // Changed since it was read (the content check above leaves a window while the new text is written)?
   struct stat again {};
-  if (::stat(target.c_str(), &again) != 0 || again.st_ino != st.st_ino || again.st_size != st.st_size ||
-      again.st_mtim.tv_sec != st.st_mtim.tv_sec || again.st_mtim.tv_nsec != st.st_mtim.tv_nsec)
+  if (::stat(target.string().c_str(), &again) != 0 || again.st_ino != st.st_ino || again.st_size != st.st_size ||
+      file_mtime_ns(again) != file_mtime_ns(st))
     return give_up("changed on disk while rrflint was running: not written");
-  if (::rename(tmpl.c_str(), target.c_str()) != 0)
+  if (replace_file(tmpl.c_str(), target.string().c_str()) != 0)
     return give_up(fmt::format("cannot replace it ({}): not written", std::strerror(errno)));
   return true;
 }

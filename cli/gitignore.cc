@@ -1,14 +1,15 @@
 // GitIgnore: is a file ignored by git? One `git check-ignore` per repository for many files at once, and a
 // fallback matcher that reads the .gitignore files itself where git gives no answer.
 #include <fmt/format.h>
-#include <unistd.h>
 
-#include <sys/stat.h>
+#ifndef _WIN32
 #include <sys/wait.h>
+#endif
 #include <cstdio>
 #include <unordered_map>
 
 #include "cli/cli.h"
+#include "frontend/platform.h"
 
 namespace rrflint::cli {
 namespace {
@@ -29,7 +30,7 @@ const std::optional<std::string>& repo_of(const std::string& dir) {
   std::optional<std::string> result;
   struct stat st;
   if (::stat(join_path(dir, ".git").c_str(), &st) == 0) result = dir;
-  else if (dir != "/") result = repo_of(parent_of(dir));
+  else if (!is_root(dir)) result = repo_of(parent_of(dir));
   return memo.emplace(dir, std::move(result)).first->second;
 }
 
@@ -47,6 +48,11 @@ void GitIgnore::prefetch(const std::vector<std::string>& files) {
     if (cache_.count(f)) continue;
     if (const auto& root = repo_of(parent_of(f)); root && !no_git_.count(*root)) by_repo[*root].push_back(&f);
   }
+#ifdef _WIN32
+  // No POSIX shell to run `git check-ignore` through: the fallback matcher reads the .gitignore files.
+  for (auto& entry : by_repo) no_git_.insert(entry.first);
+  by_repo.clear();
+#endif
   for (auto& [root, list] : by_repo) {
     char tmpl[] = "/tmp/rrflint-ignore-XXXXXX";
     int fd = mkstemp(tmpl);
@@ -137,7 +143,7 @@ const GitIgnore::Folder& GitIgnore::folder(const std::string& dir) {
   if (auto it = folders_.find(dir); it != folders_.end()) return it->second;
   Folder f;
   const auto& repo = repo_of(dir);
-  if (dir != "/" && !(repo && *repo == dir)) {  // below the top: the folders above apply too
+  if (!is_root(dir) && !(repo && *repo == dir)) {  // below the top: the folders above apply too
     const Folder& above = folder(parent_of(dir));
     f = above;
     f.ignored = above.ignored || (above.patterns && verdict(dir, true, above.chain));

@@ -4,11 +4,11 @@
 #include <fmt/format.h>
 #include <algorithm>
 
-#include <sys/stat.h>
 #include <iostream>
 #include <unordered_map>
 
 #include "cli/cli.h"
+#include "frontend/platform.h"
 
 namespace rrflint::cli {
 namespace {
@@ -42,9 +42,9 @@ class Folders {
   // An absolute, normal path with its symbolic links resolved, as fs::weakly_canonical gives it.
   const std::string& real_path(const std::string& abs) {
     if (auto it = real_.find(abs); it != real_.end()) return it->second;
-    std::string r = "/";
+    std::string r = abs;  // a root is its own
     struct stat st;
-    if (abs != "/") {
+    if (!is_root(abs)) {
       if (::lstat(abs.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
         std::error_code ec;
         r = absolute_normal(fs::weakly_canonical(abs, ec));
@@ -77,8 +77,8 @@ class Folders {
   const std::optional<CardLocation>& sd_root_above(const std::string& dir) {
     if (auto it = roots_.find(dir); it != roots_.end()) return it->second;
     std::optional<CardLocation> result;
-    if (dir != "/") {
-      if (auto sys = child_dir(dir, "sys"); sys && has_config(entries(sys->native()))) result = CardLocation{dir, *sys};
+    if (!is_root(dir)) {
+      if (auto sys = child_dir(dir, "sys"); sys && has_config(entries(sys->string()))) result = CardLocation{dir, *sys};
       else result = sd_root_above(parent_of(dir));
     }
     return roots_.emplace(dir, std::move(result)).first->second;
@@ -103,7 +103,7 @@ class Folders {
       if (n == "sys") return CardLocation{dir.parent_path(), dir};
       if (n == "macros" || n == "filaments") {
         const fs::path root = dir.parent_path();
-        return CardLocation{root, child_dir(root, "sys").value_or(root / "sys")};
+        return CardLocation{root, child_dir(root.string(), "sys").value_or(root / "sys")};
       }
     }
     // Only the file's own folder: a config.g further up (a stray ~/config.g) says nothing about this file.
@@ -114,7 +114,7 @@ class Folders {
   // The SD path of a file on disk (links resolved) in a card: below its sys folder, else below its root.
   std::optional<std::string> sd_of(const CardLocation& card, const std::string& real) {
     for (const auto& [base, prefix] : {std::pair{&card.sys_dir, "/sys/"}, std::pair{&card.root, "/"}}) {
-      auto rel = path_below(real, real_path(base->native()));
+      auto rel = path_below(real, real_path(base->string()));
       if (rel && !rel->starts_with("..")) return prefix + *rel;
     }
     return std::nullopt;
@@ -164,7 +164,7 @@ ReadResult JobReader::read(std::string_view sd_path) {
     } else {
       // Read afresh (a lint reads each file once): keeping a copy here would double the memory for the file.
       std::string err;
-      auto b = read_text(job_.standalone, &err);
+      auto b = read_text(job_.standalone.string(), &err);
       if (!b) {
         r.status = ReadResult::Status::Error;
         r.error = err;
@@ -231,9 +231,9 @@ struct Planner {
   }
 
   Job& job_for_card(const CardLocation& card, const std::string& title) {
-    if (auto it = by_sys.find(card.sys_dir.native()); it != by_sys.end()) return jobs[it->second];
+    if (auto it = by_sys.find(card.sys_dir.string()); it != by_sys.end()) return jobs[it->second];
     CardLocation c{absolute_normal(card.root), absolute_normal(card.sys_dir)};
-    const std::string key = folders.real_path(c.sys_dir.native());
+    const std::string key = folders.real_path(c.sys_dir.string());
     auto [it, fresh] = by_root.try_emplace(key, jobs.size());
     if (fresh) {
       Job j;
@@ -242,7 +242,7 @@ struct Planner {
       j.dirs = folders.dirs();
       jobs.push_back(j);
     }
-    by_sys.emplace(card.sys_dir.native(), it->second);
+    by_sys.emplace(card.sys_dir.string(), it->second);
     return jobs[it->second];
   }
 
@@ -360,8 +360,8 @@ struct Planner {
         lone(f, show(f), false);
         continue;
       }
-      Job& j = job_for_card(*at.card, show(at.card->root));
-      if (path_below(at.card->root.native(), abs)) j.report_all = true;  // the walk covers the whole card
+      Job& j = job_for_card(*at.card, show(at.card->root.string()));
+      if (path_below(at.card->root.string(), abs)) j.report_all = true;  // the walk covers the whole card
       else j.only.insert(to_lower(*at.sd));
     }
     stats.excluded += left_out;

@@ -3,14 +3,22 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
+#include "frontend/win32.h"
+#else
 #include <signal.h>
 #include <unistd.h>
+#endif
 
 #include <algorithm>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "cli/cli.h"
+#include "cli/generate.h"
 #include "frontend/disk.h"
 #include "lint/base/trace.h"
 #include "lint/render/model_render.h"
@@ -20,6 +28,21 @@ using namespace rrflint::cli;
 
 namespace {
 
+#ifdef _WIN32
+// Windows: files are read, never mapped (lint/base/huge_pages.h maps on Linux only). Standard input and output
+// are binary, so `--fix -` and the LSP keep the bytes (no CRLF translation), and the console is asked to
+// understand the ANSI colour codes (Windows 10 and later; where it cannot, --color auto sees no terminal).
+void map_large_inputs() {
+  _setmode(_fileno(stdin), _O_BINARY);
+  _setmode(_fileno(stdout), _O_BINARY);
+  for (DWORD id : {STD_OUTPUT_HANDLE, STD_ERROR_HANDLE}) {
+    const HANDLE h = GetStdHandle(id);
+    DWORD mode = 0;
+    if (h != INVALID_HANDLE_VALUE && GetConsoleMode(h, &mode))
+      SetConsoleMode(h, mode | ENABLE_VIRTUAL_TERMINAL_PROCESSING);
+  }
+}
+#else
 // Large input files are mapped rather than copied (read_text). If another program cuts such a file short while
 // it is linted, reading the lost part raises SIGBUS: report that as an I/O error (exit 2), not as a crash.
 extern "C" void on_sigbus(int) {
@@ -34,6 +57,7 @@ void map_large_inputs() {
   sigemptyset(&sa.sa_mask);
   if (::sigaction(SIGBUS, &sa, nullptr) == 0) map_large_files(true);
 }
+#endif
 
 // Checks what the command line names before any file is read. False (with a message) on a bad value.
 bool validate(CliOptions& c) {
@@ -86,6 +110,7 @@ struct Commands {
   std::string model_path, model_format = "text";
   RuleOptions ro;
   std::string config_path;
+  std::string man_file, completion_file;  // rule --generate-man, --generate-completion
   CLI::App* check = nullptr;
   CLI::Option* format_opt = nullptr;  // check's --format
   CLI::App* model = nullptr;
@@ -96,21 +121,26 @@ struct Commands {
 
 // The options that check, model and config share.
 void add_common(CLI::App* sub, CliOptions& cli) {
-  sub->add_option("--firmware", cli.firmware,
-                  "Target firmware version, e.g. 3.5 (default: config file, else inferred)");
-  sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)");
+  sub->add_option("--firmware", cli.firmware, "Target firmware version, e.g. 3.5 (default: config file, else inferred)")
+      ->type_name("VERSION");
+  sub->add_option("--board", cli.board, "Target board: duet2, duet3-6hc, duet3-mini, maestro (default: inferred)")
+      ->type_name("BOARD");
   sub->add_option("--select", cli.select,
                   "Rules to enable (codes, names, prefixes like RRF3, or ALL); replaces the set so far")
+      ->type_name("RULES")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--extend-select", cli.extend_select, "Rules to enable in addition")
+      ->type_name("RULES")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_option("--ignore", cli.ignore, "Rules to disable (codes, names, prefixes)")
+      ->type_name("RULES")
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
-  sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml");
+  sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml")
+      ->type_name("FILE");
   sub->add_flag("--isolated", cli.isolated, "Ignore every config file");
   sub->add_flag("--no-inline-suppressions", cli.no_inline_suppressions,
                 "Ignore `; rrflint: disable…` comments (for CI that forbids them)");
@@ -121,20 +151,28 @@ void add_check(CLI::App& app, Commands& c) {
       app.add_subcommand("check", "Lint SD-card folders, sys folders, repositories or single files");
   CheckOptions& co = c.co;
   CliOptions& cli = c.cli;
-  check->add_option("paths", co.paths,
-                    "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)");
+  check
+      ->add_option("paths", co.paths, "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)")
+      ->type_name("PATH");
   c.format_opt =
       check->add_option("--format", co.format, "Output format: text, concise, json, json-lines, sarif, github")
+          ->type_name("FORMAT")
           ->check(CLI::IsMember({"text", "concise", "json", "json-lines", "sarif", "github"}));
   check->add_option("--fail-on", cli.fail_on, "Lowest severity that makes the exit code 1: error, warning, info")
+      ->type_name("SEVERITY")
       ->check(CLI::IsMember({"error", "warning", "info"}));
   check->add_option("--color", co.color, "Colour: auto, always, never (NO_COLOR, FORCE_COLOR, TERM=dumb are honoured)")
+      ->type_name("WHEN")
       ->check(CLI::IsMember({"auto", "always", "never"}));
-  check->add_option("--stdin-filename", co.plan.stdin_filename,
-                    "The name of the file read from stdin (messages, config, card)");
-  check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout");
+  check
+      ->add_option("--stdin-filename", co.plan.stdin_filename,
+                   "The name of the file read from stdin (messages, config, card)")
+      ->type_name("FILE");
+  check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout")
+      ->type_name("FILE");
   check->add_flag("--exit-zero", co.exit_zero, "Exit 0 even when findings reach --fail-on");
   check->add_option("-j,--jobs", co.jobs, "Lint up to N machines at once (default: the CPU count, at most 8)")
+      ->type_name("N")
       ->check(CLI::Range(1u, 256u));
   check->add_flag("-v,--verbose", co.verbose, "Print the firmware target, its evidence and the config file (stderr)");
   check->add_flag("--fix", co.fix, "Apply safe fixes (rounds until stable, at most 10) and report what is left");
@@ -152,29 +190,40 @@ void add_check(CLI::App& app, Commands& c) {
 void add_model_rule_config(CLI::App& app, Commands& c) {
   // model
   CLI::App* model = c.model = app.add_subcommand("model", "Print the machine model the boot sequence builds");
-  model->add_option("path", c.model_path, "SD-card root, sys folder or config.g")->required();
-  model->add_option("--format", c.model_format, "text or json")->check(CLI::IsMember({"text", "json"}));
+  model->add_option("path", c.model_path, "SD-card root, sys folder or config.g")->type_name("PATH")->required();
+  model->add_option("--format", c.model_format, "text or json")
+      ->type_name("FORMAT")
+      ->check(CLI::IsMember({"text", "json"}));
   add_common(model, c.cli);
 
   // rule
   CLI::App* rule = c.rule = app.add_subcommand("rule", "Print a rule's documentation, or generate docs/rules");
   RuleOptions& ro = c.ro;
-  rule->add_option("rule", ro.name, "Rule code or name");
+  rule->add_option("rule", ro.name, "Rule code or name")->type_name("RULE");
   rule->add_flag("--all", ro.all, "Every rule");
-  rule->add_option("--format", ro.format, "text (Markdown) or json")->check(CLI::IsMember({"text", "json"}));
-  rule->add_option("--generate-docs", ro.generate_dir, "Write every rule's page and an index to this folder");
-  rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list");
+  rule->add_option("--format", ro.format, "text (Markdown) or json")
+      ->type_name("FORMAT")
+      ->check(CLI::IsMember({"text", "json"}));
+  rule->add_option("--generate-docs", ro.generate_dir, "Write every rule's page and an index to this folder")
+      ->type_name("DIR");
+  rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list")
+      ->type_name("FILE");
   rule->add_flag("--check", ro.check, "With --generate-docs: write nothing, exit 1 when a file is stale");
-  rule->add_option("--config", c.cli.config_path,
-                   "With --format json: the config file whose docs-url the links follow");
+  rule->add_option("--config", c.cli.config_path, "With --format json: the config file whose docs-url the links follow")
+      ->type_name("FILE");
   rule->add_flag("--isolated", c.cli.isolated, "Ignore every config file");
+  rule->add_option("--generate-man", c.man_file, "Write the man page rrflint.1 to this file (the build does)")
+      ->type_name("FILE");
+  rule->add_option("--generate-completion", c.completion_file, "Write the bash completion script to this file")
+      ->type_name("FILE");
 
   // config
   CLI::App* config = c.config =
       app.add_subcommand("config", "Print the effective settings for a path and where each came from");
-  config->add_option("path", c.config_path, "A file or folder (default: .)");
+  config->add_option("path", c.config_path, "A file or folder (default: .)")->type_name("PATH");
   add_common(config, c.cli);
   config->add_option("--fail-on", c.cli.fail_on, "error, warning or info")
+      ->type_name("SEVERITY")
       ->check(CLI::IsMember({"error", "warning", "info"}));
 }
 
@@ -215,6 +264,21 @@ int run_model(const CliOptions& cli, const std::string& model_path, const std::s
   return kExitClean;
 }
 
+// `rrflint rule --generate-man FILE --generate-completion FILE` (generate.h): the build runs it.
+int write_generated(const CLI::App& app, const std::string& man_file, const std::string& completion_file) {
+  for (const auto& [file, text] : {std::pair{man_file, man_page(app, builtin_rules(), installed_rule_docs())},
+                                   std::pair{completion_file, bash_completion(app, builtin_rules())}}) {
+    if (file.empty()) continue;
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+    if (!out.flush()) {
+      error(fmt::format("{}: cannot write", file));
+      return kExitError;
+    }
+  }
+  return kExitClean;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -247,6 +311,8 @@ int main(int argc, char** argv) {
     return kExitError;
   }
 
+  if (c.rule->parsed() && (!c.man_file.empty() || !c.completion_file.empty()))
+    return write_generated(app, c.man_file, c.completion_file);
   if (c.rule->parsed()) return run_rule(c.ro, c.cli);
   if (c.server->parsed()) return run_server();
 

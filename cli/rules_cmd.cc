@@ -22,7 +22,7 @@ std::string_view fix_name(FixAvailability f) {
 // Writes `text` to `path` when it differs; with `check`, only reports. Returns true when the file was stale.
 bool sync(const fs::path& path, const std::string& text, bool check) {
   std::string err;
-  auto now = read_file(path, &err);
+  auto now = read_file(path.string(), &err);
   if (now && *now == text) return false;
   if (check) {
     std::cerr << "rrflint: stale: " << path.generic_string() << "\n";
@@ -47,7 +47,7 @@ int generate(const RuleOptions& ro) {
     const std::string name = it->path().filename().string();
     if (!name.ends_with(".md") || docs.count(name)) continue;
     std::string err;
-    auto text = read_file(it->path(), &err);
+    auto text = read_file(it->path().string(), &err);
     if (!text || text->find("Generated from the rule registry") == std::string::npos) continue;
     stale = true;
     if (ro.check) std::cerr << "rrflint: stale: " << it->path().generic_string() << " (no such rule)\n";

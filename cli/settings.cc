@@ -116,7 +116,7 @@ std::vector<RuleDecision> decide_rules(const Config* cfg, const CliOptions& cli)
 }
 
 bool Settings::effective(const fs::path& dir, Effective& out) {
-  std::shared_ptr<const Config> config = config_for(dir);
+  std::shared_ptr<const Config> config = config_for(dir.string());
   if (error_) return false;
   // The settings depend only on the config file: worked out once for each.
   auto [memo, fresh] = effective_.try_emplace(config.get());
@@ -251,7 +251,7 @@ void print_file_notes(std::ostream& os, const fs::path& path, Settings& settings
   std::error_code ec;
   if (!fs::is_directory(path, ec)) {
     std::string why;
-    if (settings.excluded(path, &why)) os << "# this file is excluded by " << why << "\n";
+    if (settings.excluded(path.string(), &why)) os << "# this file is excluded by " << why << "\n";
     if (cfg)
       for (const PathPattern& p : cfg->per_file_ignores) {
         auto rel = relative_below(path, p.base);

@@ -1,16 +1,17 @@
 #include "frontend/disk.h"
 #include "lint/base/trace.h"
 
+#ifndef _WIN32
 #include <dirent.h>
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <system_error>
 
+#include "frontend/platform.h"
 #include "lint/base/huge_pages.h"
 
 namespace fs = std::filesystem;
@@ -27,7 +28,7 @@ const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_vie
   return nullptr;
 }
 
-bool has_config(const fs::path& dir) { return has_config(list_dir(dir)); }
+bool has_config(const fs::path& dir) { return has_config(list_dir(dir.string())); }
 
 bool has_config(const std::vector<DirEntry>& entries) {
   // Anything called config.g but a folder: a config.g that is a FIFO or a dangling link still makes a card, whose
@@ -36,6 +37,20 @@ bool has_config(const std::vector<DirEntry>& entries) {
   return c && c->kind != DirEntry::Kind::Dir;
 }
 
+#ifdef _WIN32
+// Windows: the folder through std::filesystem (the MSVC runtime has no dirent); its links are followed.
+std::vector<DirEntry> list_dir(const std::string& dir) {
+  std::vector<DirEntry> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(dir), ec), end; !ec && it != end; it.increment(ec)) {
+    DirEntry entry{it->path().filename().string(), DirEntry::Kind::Other, it->is_symlink(ec)};
+    if (it->is_regular_file(ec)) entry.kind = DirEntry::Kind::File;
+    else if (it->is_directory(ec)) entry.kind = DirEntry::Kind::Dir;
+    out.push_back(std::move(entry));
+  }
+  return out;
+}
+#else
 std::vector<DirEntry> list_dir(const std::string& dir) {
   std::vector<DirEntry> out;
   DIR* d = ::opendir(dir.c_str());
@@ -60,6 +75,7 @@ std::vector<DirEntry> list_dir(const std::string& dir) {
   ::closedir(d);
   return out;
 }
+#endif
 
 std::string join_path(const std::string& dir, std::string_view name) {
   std::string out;
@@ -70,8 +86,20 @@ std::string join_path(const std::string& dir, std::string_view name) {
   return out;
 }
 
+namespace {
+// A Windows drive, "C:" (the root is "C:/"); never on POSIX systems, where every absolute path starts with '/'.
+bool is_drive(std::string_view s) {
+  return s.size() == 2 && s[1] == ':' && std::isalpha(static_cast<unsigned char>(s[0]));
+}
+}  // namespace
+
+bool is_root(std::string_view abs) {
+  return abs == "/" || (abs.size() == 3 && is_drive(abs.substr(0, 2)) && abs[2] == '/');
+}
+
 std::string parent_of(std::string_view abs) {
   const size_t slash = abs.rfind('/');
+  if (slash != std::string_view::npos && is_drive(abs.substr(0, slash))) return std::string(abs.substr(0, slash + 1));
   return slash == 0 || slash == std::string_view::npos ? std::string("/") : std::string(abs.substr(0, slash));
 }
 
@@ -79,7 +107,7 @@ std::string_view name_of(std::string_view path) { return path.substr(path.rfind(
 
 std::optional<std::string> path_below(std::string_view abs, std::string_view base) {
   if (abs == base) return std::string();
-  if (base == "/") return abs.starts_with('/') ? std::optional<std::string>(abs.substr(1)) : std::nullopt;
+  if (is_root(base)) return abs.starts_with(base) ? std::optional<std::string>(abs.substr(base.size())) : std::nullopt;
   if (abs.size() > base.size() && abs.starts_with(base) && abs[base.size()] == '/')
     return std::string(abs.substr(base.size() + 1));
   return std::nullopt;
@@ -200,8 +228,8 @@ std::optional<TextBuffer> read_text(const std::string& path, std::string* error)
 
 std::string absolute_normal(const fs::path& p) {
   std::error_code ec;
-  std::string s = fs::absolute(p, ec).lexically_normal().string();
-  if (s.size() > 1 && s.ends_with('/')) s.pop_back();
+  std::string s = fs::absolute(p, ec).lexically_normal().generic_string();  // Windows too: '/', "C:/…"
+  if (!is_root(s) && s.ends_with('/')) s.pop_back();
   return s;
 }
 
@@ -322,7 +350,7 @@ std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
 std::optional<CardLocation> card_at(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return std::nullopt;
-  const std::vector<DirEntry> entries = list_dir(dir);
+  const std::vector<DirEntry> entries = list_dir(dir.string());
   if (const DirEntry* sys = find_entry(entries, "sys"); sys && has_config(dir / sys->name))
     return CardLocation{dir, dir / sys->name};
   if (has_config(dir)) {

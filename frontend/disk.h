@@ -33,7 +33,9 @@ const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_vie
 std::string join_path(const std::string& dir, std::string_view name);
 /// The absolute, lexically normal form of a path, without a trailing slash (but "/" for the root).
 std::string absolute_normal(const std::filesystem::path& p);
-/// The folder above an absolute, normal path ("/" above "/a").
+/// An absolute, normal path that is a file-system root: "/", or on Windows a drive's "C:/".
+bool is_root(std::string_view abs);
+/// The folder above an absolute, normal path ("/" above "/a", "C:/" above "C:/a").
 std::string parent_of(std::string_view abs);
 /// The last part of a path.
 std::string_view name_of(std::string_view path);

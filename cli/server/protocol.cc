@@ -1,8 +1,8 @@
 // The language server's wire: framing, parsing, writing (protocol.h).
 #include "cli/server/protocol.h"
+#include "frontend/platform.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>

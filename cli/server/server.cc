@@ -302,7 +302,9 @@ class Server {
 namespace rrflint::cli {
 
 int run_server() {
+#ifdef SIGPIPE
   ::signal(SIGPIPE, SIG_IGN);  // a client gone: write() fails and the server stops, rather than being killed
+#endif
   // Files are copied, never mapped: in a long-lived process a file cut short on disk while it is read (an editor
   // saving it) would raise SIGBUS and end the server (cli/main.cc turns mapping on for `check`).
   map_large_files(false);

@@ -108,7 +108,7 @@ void Workspace::place(Document& doc) {
   std::optional<cli::FilePlace> at;
   if (doc.path) at = cli::place_file(*doc.path);
   if (at) {
-    doc.machine = at->card.sys_dir.native();
+    doc.machine = at->card.sys_dir.string();
     doc.sd_path = at->sd_path;
     machines_[doc.machine].card = at->card;
   } else {
@@ -212,12 +212,12 @@ cli::Job Workspace::job_of(const MachineEntry& m, const Document* lone) const {
   if (m.card) {
     job.card = m.card;
     job.report_all = true;
-    job.title = m.card->root.native();
+    job.title = m.card->root.string();
     job.dirs = std::make_shared<DirCache>();  // listed afresh: files come and go on disk between lints
   } else {
     job.standalone = lone->path ? fs::path(*lone->path) : fs::path(name_of_uri(lone->uri));
     job.stdin_bytes = lone->text;
-    job.title = job.standalone.native();
+    job.title = job.standalone.string();
   }
   return job;
 }
