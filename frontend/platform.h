@@ -76,6 +76,12 @@ inline int64_t file_mtime_ns(const struct stat& st) {
 #endif
 }
 
+/// Waits up to `timeout_ms` for input on `fd` (poll() on POSIX): 1 when there is some (or the end of it, or an
+/// error a read will report), 0 when the time ran out, -1 with errno set when the wait failed. On Windows a pipe is
+/// polled with PeekNamedPipe every millisecond; any other kind of handle (a file, the console) reads as ready, so
+/// the caller's read blocks, as before a debounce existed.
+int wait_readable(int fd, int timeout_ms);
+
 /// Renames `from` over `to` (which may exist) in one step; 0 or -1 with errno set.
 inline int replace_file(const char* from, const char* to) {
 #ifdef _WIN32

@@ -15,7 +15,6 @@
 // RequestCancelled, for any other id it is ignored. Unknown requests get MethodNotFound; unknown notifications are
 // ignored; a broken message gets a ParseError response or a log line (stderr and window/logMessage), and the
 // server reads on. Responses to the server's own requests are matched by id; an error response is logged.
-#include <poll.h>
 #include <signal.h>
 
 #include <cerrno>
@@ -29,6 +28,7 @@
 #include "cli/server/text.h"
 #include "cli/server/workspace.h"
 #include "frontend/disk.h"
+#include "frontend/platform.h"
 
 namespace rrflint::server {
 namespace {
@@ -97,9 +97,8 @@ class Server {
       const auto left = std::chrono::ceil<std::chrono::milliseconds>(*due - Workspace::Clock::now());
       timeout = static_cast<int>(std::max<int64_t>(left.count(), 0));
     }
-    pollfd p{0, POLLIN, 0};
-    const int ready = ::poll(&p, 1, timeout);
-    if (ready < 0) return errno != EINTR;  // poll failed: reading blocks instead
+    const int ready = wait_readable(0, timeout);
+    if (ready < 0) return errno != EINTR;  // the wait failed: reading blocks instead
     if (ready > 0) return true;
     if (queued_.empty() && Workspace::Clock::now() < *ws_.due()) return false;
     answer_queued();
