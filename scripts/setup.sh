@@ -8,6 +8,7 @@ set -euo pipefail
 pkgs=(cmake make g++ pkg-config libfmt-dev nlohmann-json3-dev catch2 libcli11-dev libtomlplusplus-dev)
 if [[ "${1:-}" == "--test" ]]; then
   pkgs+=(python3 python3-jsonschema git pre-commit clang-format-14)
+  pkgs+=(clang-14 libclang-rt-14-dev)  # scripts/fuzz.sh: the libFuzzer targets (clang 14, libFuzzer, ASan, UBSan)
 fi
 if [[ "${1:-}" == "--bench" ]]; then
   pkgs+=(libbenchmark-dev hyperfine)
