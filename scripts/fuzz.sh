@@ -11,7 +11,8 @@
 # the input), when a target would not build, or when libFuzzer's output could not be read.
 #
 # Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RESULTS (the file the rows go to; set it empty to record
-# nothing, as the CI smoke does), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048).
+# nothing, as the CI smoke does), FUZZ_SEEDS (keep that many seeds per target, spread over them: a short run would
+# spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -42,10 +43,10 @@ cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
 
 work="$build/fuzz-work"
 rm -rf "$work/seeds"
-python3 tests/fuzz/make_seeds.py "$work/seeds"
+python3 tests/fuzz/make_seeds.py ${FUZZ_SEEDS:+--max "$FUZZ_SEEDS"} "$work/seeds"
 mkdir -p "$work/artifacts" "$work/logs"
 
-declare -A max_len=([parse]=16384 [lint]=8192 [card]=16384 [fix]=8192 [render]=8192 [lsp]=16384)
+declare -A max_len=([parse]=8192 [lint]=4096 [card]=8192 [fix]=4096 [render]=4096 [lsp]=8192)
 if [[ -n "$results" && ! -f "$results" ]]; then
   echo "fuzz: $results is missing (it starts with the table header)" >&2
   exit 2
@@ -64,7 +65,7 @@ for t in "${targets[@]}"; do
     -artifact_prefix="$work/artifacts/$t-" "$work/corpus/$t" "$work/seeds/$t" >"$log" 2>&1 || status=$?
   elapsed=$(($(date +%s) - start))
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+  cov=$(sed -n 's/.*[ \t]cov: \([0-9]*\).*/\1/p' "$log" | tail -1)
   artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
   findings=0
   if [[ $status -ne 0 || -n "$artifact" ]]; then

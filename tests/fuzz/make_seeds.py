@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Writes the seed inputs of the fuzz targets (tests/fuzz/fuzz_*.cc) into OUT/<target>/, in each target's format.
 
-    tests/fuzz/make_seeds.py OUT [CORPUS]
+    tests/fuzz/make_seeds.py [--max N] OUT [CORPUS]
 
 Sources: tests/fuzz/corpus/, the rule fixtures (fixtures/: a <case>.g is a card of one config.g, a <case>/ folder a
 whole card) and, read-only, the real configs of CORPUS (default ../shared/corpus, skipped when absent). OUT must
 be a scratch folder (scripts/fuzz.sh uses one under its build folder): the seeds are never written into the
 repository or the corpus. Formats: `parse` is an option byte and one file; `lint` an option byte, config.g and
 optionally 0xFF and /sys/m.g; `card`, `fix` and `render` the card format of tests/fuzz/fuzz_input.h; `lsp` LSP
-messages, framed and broken.
+messages, framed and broken. --max N keeps N seeds per target, spread evenly over them (a short smoke run,
+which would spend its time on the seeds alone).
 """
 import json
 import sys
@@ -111,10 +112,14 @@ def lsp_seeds(texts):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
+    args = sys.argv[1:]
+    most = None
+    if args[:1] == ["--max"] and len(args) > 1 and args[1].isdigit() and int(args[1]) > 0:
+        most, args = int(args[1]), args[2:]
+    if len(args) not in (1, 2):
         sys.exit(__doc__)
-    out = Path(sys.argv[1])
-    corpus = Path(sys.argv[2]) if len(sys.argv) == 3 else ROOT.parent / "shared" / "corpus"
+    out = Path(args[0])
+    corpus = Path(args[1]) if len(args) == 2 else ROOT.parent / "shared" / "corpus"
     all_cards = list(cards())
     if corpus.is_dir():
         all_cards += list(corpus_cards(corpus))
@@ -132,6 +137,10 @@ def main():
     for name, data in lsp_seeds(small):
         seeds["lsp"][name] = sel(name) + data
     for target, items in seeds.items():
+        if most is not None and len(items) > most:
+            names = sorted(items)
+            items = {n: items[n] for n in names[:: -(-len(names) // most)]}
+            seeds[target] = items
         d = out / target
         d.mkdir(parents=True, exist_ok=True)
         for name, data in items.items():
