@@ -511,7 +511,7 @@ TEST_CASE("apply_fixes: an edit of line endings writes the ones it says, not the
   d.loc = Location{f.id(), Span{3, 4}};
   d.fix = Fix{"replace CR line endings with LF",
               Applicability::Safe,
-              {Edit{Location{f.id(), Span{3, 4}}, "\n"}, Edit{Location{f.id(), Span{8, 9}}, "\n"},
+              {Edit{Location{f.id(), Span{3, 4}}, "\n"}, Edit{Location{f.id(), Span{9, 10}}, "\n"},
                Edit{Location{f.id(), Span{0, 0}}, "; note\n"}}};
   std::map<FileId, std::string> texts;
   CHECK(cli::apply_fixes(

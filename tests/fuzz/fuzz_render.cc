@@ -61,7 +61,7 @@ void check_sarif(const SourceManager& sm, const MachineResult& r, const RenderOp
   const json& run = doc["runs"][0];
   if (!is_array_of(run, "results", r.diagnostics.size()) || !run.contains("tool")) __builtin_trap();
   const json& driver = run["tool"].value("driver", json());
-  if (driver.value("name", "") != "rrflint" || !is_array_of(driver, "rules", builtin_rules().all().size()))
+  if (driver.value("name", "") != "rrflint" || !is_array_of(driver, "rules", ro.rules ? ro.rules->all().size() : 0))
     __builtin_trap();
   for (const json& res : run["results"])
     if (!res.contains("ruleId") || !res.contains("level") || !is_array_of(res, "locations", 1)) __builtin_trap();
@@ -76,7 +76,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const MachineResult& r = card.result;
 
   RenderOptions ro;
-  ro.rules = &builtin_rules();
+  // The rule list (every rule's docs, the bulk of a SARIF report) does not depend on the input: one input in 64
+  // renders it, the others are spared the time.
+  ro.rules = (data[0] & 0x3f) == 0 ? &builtin_rules() : nullptr;
   ro.docs_base = "https://example.org/rules/";
   ro.files_checked = sm.size();
   ro.machines.push_back({"card", r.target});
