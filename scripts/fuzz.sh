@@ -52,7 +52,7 @@ if [[ -n "$results" && ! -f "$results" ]]; then
   exit 2
 fi
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
-git diff --quiet HEAD 2>/dev/null || commit="$commit+"
+git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
 failed=0
 for t in "${targets[@]}"; do
   mkdir -p "$work/corpus/$t"
@@ -87,7 +87,7 @@ for t in "${targets[@]}"; do
 done
 if [[ -n "$results" ]]; then
   # Totals over every recorded run.
-  awk -F'|' '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { n[$3] += $4 } END { for (t in n) printf "fuzz: total %s%d executions\n", t, n[t] }' \
+  awk -F'|' '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { gsub(/ /, "", $3); n[$3] += $4 } END { for (t in n) printf "fuzz: total %s: %d executions\n", t, n[t] }' \
     "$results" | sort
 fi
 exit $failed
