@@ -63,7 +63,10 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
     for (const Edit& e : d.fix->edits) {
       taken[e.loc.file].push_back(e.loc.span);
       Edit copy = e;
-      copy.replacement = with_eol(e.replacement, dominant_eol(sm.get(e.loc.file)));
+      // An edit of line endings themselves (CR to LF) keeps the ones it writes.
+      const std::string_view replaced = sm.get(e.loc.file).slice(e.loc.span);
+      if (replaced.empty() || replaced.find_first_not_of("\r\n") != std::string_view::npos)
+        copy.replacement = with_eol(e.replacement, dominant_eol(sm.get(e.loc.file)));
       accepted[e.loc.file].push_back(std::move(copy));
     }
     if (per_file) ++(*per_file)[d.fix->edits.front().loc.file];

@@ -1,4 +1,5 @@
 // RRF331 g10-implicit-z: a tool-offset G10 that leaves Z out where Z is provably 0 (opt-in).
+#include "rules/append_fix.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -9,7 +10,7 @@ constexpr RuleMeta kMeta{
     .name = "g10-implicit-z",
     .severity = Severity::Info,
     .default_enabled = false,
-    .fix = FixAvailability::Always,
+    .fix = FixAvailability::Sometimes,
     .summary = "A tool-offset G10 leaves Z out; Z is 0 here, but say so explicitly.",
     .docs = R"md(
 ## What it does
@@ -59,10 +60,10 @@ void check(const NodeContext& cx, Sink& out) {
     if (m->t->created == kNoNode || m->t->created < begin) return;
     if (m->z.origin != kNoNode && m->z.origin < begin) return;
   }
-  out.report(kMeta, cx.at(cx.command().span),
-             fmt::format("{} leaves the Z offset of tool {} implicit (it is 0 here): write 'Z0'",
-                         tools::quote(cx.parsed(), cx.command()), m->tool))
-      .fix(tools::append_z(cx, "0"));
+  Report r = out.report(kMeta, cx.at(cx.command().span),
+                        fmt::format("{} leaves the Z offset of tool {} implicit (it is 0 here): write 'Z0'",
+                                    tools::quote(cx.parsed(), cx.command()), m->tool));
+  if (tools::appendable(cx)) r.fix(tools::append_z(cx, "0"));
 }
 
 }  // namespace

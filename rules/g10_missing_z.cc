@@ -1,4 +1,5 @@
 // RRF306 g10-missing-z: a tool-offset G10 without Z where the tool's Z offset may be non-zero.
+#include "rules/append_fix.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -106,7 +107,7 @@ void check(const NodeContext& cx, Sink& out) {
                                     "set Z on this line too",
                                     tools::quote(pf, c), m->tool, why));
   if (m->z.origin != kNoNode) r.note(cx.where(m->z.origin), fmt::format("tool {} gets its Z offset here", m->tool));
-  if (!value.empty() && !m->probed) r.fix(tools::append_z(cx, value));
+  if (!value.empty() && !m->probed && tools::appendable(cx)) r.fix(tools::append_z(cx, value));
 }
 
 }  // namespace

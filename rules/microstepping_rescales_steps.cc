@@ -61,7 +61,7 @@ M350 X128 Y128 I0
 
 /// The microstepping an M350 sets for `letter` (the first value for E), or -1 when unknown or none.
 int64_t microstepping(const tools::NodeCommand& k, char letter) {
-  if (k.node->maybe) return -1;
+  if (k.node.maybe) return -1;
   auto v = get_int_list(*k.pf, *k.c, letter);
   return v.known() && !v.value.empty() && v.value[0] >= 0 ? v.value[0] : -1;
 }
@@ -99,7 +99,7 @@ Rescale find_rescale(const NodeContext& cx, char L) {
   for (NodeId at = next_for(cx, cx.id, L, false); at != kNoNode; at = next_for(cx, at, L, false)) {
     const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, at);
     if (k.is('M', 92)) {
-      if (r.m350 == kNoNode || k.node->maybe) return {};
+      if (r.m350 == kNoNode || k.node.maybe) return {};
       r.again = at;
       return r;
     }

@@ -166,7 +166,7 @@ inline std::vector<DriverId> lost_setting(const NodeContext& cx, const tools::No
                                           const std::vector<DriverId>& before, const DriveMap& at) {
   std::vector<DriverId> out;
   const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, m);
-  if (!k || k.node->maybe) return out;
+  if (!k || k.node.maybe) return out;
   const bool can = is_current_code(d.c->number);
   auto now = get_driver_list(*k.pf, *k.c, letter);
   if (!now.known()) return out;
@@ -256,7 +256,7 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
       if (is_axis_value(*k.pf, *k.c, p) && !at.axis(L) && mk.pf->find(*mk.c, L)) {
         const bool override_line = (k.is('M', 208) || k.is('G', 31)) && tools::inside_m501(cx.graph, i);
         // A line that runs again after the M584 (a macro called before and after it) sets the axis then.
-        if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node->maybe) &&
+        if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node.maybe) &&
             !tools::runs_again(cx.graph, n, m, cx.segment().end))
           out.push_back({i, L, Loss::Created, {}});
       } else if (settings && !n.maybe && (L == 'E' || at.axis(L)) && k.pf->find(*k.c, L).is(p)) {

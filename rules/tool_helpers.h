@@ -39,11 +39,12 @@ inline std::string axis_name(const MachineState& s, int i) {
 
 inline bool axis_visible(const MachineState& s, char letter) { return s.axis_visible(s.axis_index(letter)); }
 
-/// The command of a graph node, or nullptr for Enter/Leave/ToolSelect nodes.
+/// The command of a graph node, or nullptr for Enter/Leave/ToolSelect nodes. The node is a copy: Graph::nodes
+/// decodes nodes on access, so a pointer to one would dangle (found by fuzzing: a stack use after scope).
 struct NodeCommand {
   const ParsedFile* pf = nullptr;
   std::optional<Command> c;
-  const Node* node = nullptr;
+  Node node;
   explicit operator bool() const { return c.has_value(); }
   bool is(char letter, int number) const { return c && c->letter == letter && c->number == number && c->fraction < 0; }
 };
@@ -51,7 +52,7 @@ struct NodeCommand {
 inline NodeCommand command_at(const Machine& m, const Node& n) {
   if (n.kind != NodeKind::Command) return {};
   const ParsedFile& pf = m.unit(n.unit).parsed;
-  return {&pf, pf.commands[n.index], &n};
+  return {&pf, pf.commands[n.index], n};
 }
 inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) { return command_at(m, g.nodes[id]); }
 
@@ -64,7 +65,7 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const CommandTable::Code code = pf.commands.code(n.index);
     return code.letter == letter && code.number == number && code.fraction < 0 &&
-           pred(NodeCommand{&pf, pf.commands[n.index], &n});
+           pred(NodeCommand{&pf, pf.commands[n.index], n});
   });
 }
 

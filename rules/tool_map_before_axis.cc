@@ -101,7 +101,7 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
       std::string letters;
       for (const Axis& a : s.axes) letters += a.letter;
       NodeId later = tools::find_later(cx, 'M', 584, [&](const tools::NodeCommand& nc) {
-        if (nc.node->maybe) return false;
+        if (nc.node.maybe) return false;
         for (char L : allowed_axis_letters())
           if (letters.find(L) == std::string::npos && nc.pf->find(*nc.c, L)) letters += L;
         return letters.size() > static_cast<size_t>(idx);

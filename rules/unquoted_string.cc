@@ -1,4 +1,6 @@
 // RRF103 unquoted-string: a string parameter written without the quotes RRF 3 requires.
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
@@ -11,7 +13,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF103",
     .name = "unquoted-string",
     .severity = Severity::Error,
-    .fix = FixAvailability::Always,
+    .fix = FixAvailability::Sometimes,
     .summary = "A string parameter is given without the quotes RRF 3 requires.",
     .docs = R"md(
 ## What it does
@@ -123,11 +125,12 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
                                     : std::string(
                                           "RRF 3 needs quotes here and rejects the command ('expected a string "
                                           "expression')");
-  Fix fix =
-      Fix::unsafe(fmt::format("quote '{}'", text), Edit::replace(cx.at(Span{after, e}), fmt::format("\"{}\"", text)));
-  out.report(kMeta, cx.at(Span{p.span.begin, e}),
-             fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why))
-      .fix(std::move(fix));
+  Report r = out.report(kMeta, cx.at(Span{p.span.begin, e}),
+                        fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why));
+  // A control byte ends a quoted string (RRF rejects it there): quoting such text would make a syntax error.
+  if (std::none_of(text.begin(), text.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20; }))
+    r.fix(Fix::unsafe(fmt::format("quote '{}'", text),
+                      Edit::replace(cx.at(Span{after, e}), fmt::format("\"{}\"", text))));
 }
 
 // Is the target certainly one that needs quotes for this command? An unquoted M98 file name is itself a sign of

@@ -502,6 +502,24 @@ TEST_CASE("apply_fixes: overlapping fixes are never applied together; a file's l
   CHECK(texts.empty());
 }
 
+// Found by tests/fuzz/fuzz_fix.cc: the CR-to-LF fix of a CR-only file was written back with CRs (the file's own
+// line ending), so --fix reported fixes round after round and changed nothing.
+TEST_CASE("apply_fixes: an edit of line endings writes the ones it says, not the file's", "[cli][matrix][fix]") {
+  SourceManager sm;
+  const SourceFile& f = sm.add("config.g", "/sys/config.g", TextBuffer(std::string("M83\rG4 S1\r")));
+  Diagnostic d;
+  d.loc = Location{f.id(), Span{3, 4}};
+  d.fix = Fix{"replace CR line endings with LF",
+              Applicability::Safe,
+              {Edit{Location{f.id(), Span{3, 4}}, "\n"}, Edit{Location{f.id(), Span{9, 10}}, "\n"},
+               Edit{Location{f.id(), Span{0, 0}}, "; note\n"}}};
+  std::map<FileId, std::string> texts;
+  CHECK(cli::apply_fixes(
+            sm, {d}, cli::FixOptions{}, [](FileId) { return true; }, texts) == 1);
+  // The line endings become LF; the inserted line still gets the file's CR.
+  CHECK(texts[f.id()] == "; note\rM83\nG4 S1\n");
+}
+
 TEST_CASE("matrix: --fix writes only the files that were linted, and keeps their owner", "[cli][matrix][fix]") {
   TempTree t;
   const std::string fixable = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n";

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (tests/fuzz/fuzz_*.cc; clang 14, -fsanitize=fuzzer,address,undefined) in their own
+# build folder and runs each for a given time, appending one row per run to tests/fuzz/RESULTS.md.
+#
+#   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET…]     default: 60 seconds, every target
+#
+# TARGET: parse, lint, card, fix, render, lsp. Each run has a timeout per input (hang detection), a memory limit
+# and leak detection on. Seeds come from tests/fuzz/make_seeds.py (fixtures/, and ../shared/corpus read-only when
+# present); new inputs go to a scratch corpus under the build folder, kept from run to run; crash, hang, leak and
+# out-of-memory inputs go to its artifacts/ folder. Exits non-zero when any run found something (the row names
+# the input), when a target would not build, or when libFuzzer's output could not be read.
+#
+# Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RESULTS (the file the rows go to; set it empty to record
+# nothing, as the CI smoke does), FUZZ_SEEDS (keep that many seeds per target, spread over them: a short run would
+# spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+seconds=${1:-60}
+shift || true
+all=(parse lint card fix render lsp)
+targets=("$@")
+[[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
+for t in "${targets[@]}"; do
+  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz: unknown target '$t' (known: ${all[*]})" >&2; exit 2; }
+done
+[[ "$seconds" =~ ^[0-9]+$ && "$seconds" -gt 0 ]] || { echo "fuzz: SECONDS_PER_TARGET must be a positive number" >&2; exit 2; }
+
+build=${FUZZ_BUILD_DIR:-build-fuzz}
+results=${FUZZ_RESULTS-tests/fuzz/RESULTS.md}
+timeout=${FUZZ_TIMEOUT:-10}
+rss=${FUZZ_RSS_MB:-2048}
+cxx=$(command -v clang++-14 || command -v clang++ || true)
+[[ -n "$cxx" ]] || { echo "fuzz: clang++-14 is needed (scripts/setup.sh --test installs it)" >&2; exit 2; }
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+generator=()
+command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+[[ -f "$build/CMakeCache.txt" ]] && generator=()
+cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
+cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+
+work="$build/fuzz-work"
+rm -rf "$work/seeds"
+python3 tests/fuzz/make_seeds.py ${FUZZ_SEEDS:+--max "$FUZZ_SEEDS"} "$work/seeds"
+mkdir -p "$work/artifacts" "$work/logs"
+
+declare -A max_len=([parse]=8192 [lint]=4096 [card]=8192 [fix]=4096 [render]=4096 [lsp]=8192)
+if [[ -n "$results" && ! -f "$results" ]]; then
+  echo "fuzz: $results is missing (it starts with the table header)" >&2
+  exit 2
+fi
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
+git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
+failed=0
+for t in "${targets[@]}"; do
+  mkdir -p "$work/corpus/$t"
+  log="$work/logs/$t.log"
+  start=$(date +%s)
+  status=0
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    "$build/fuzz_$t" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb="$rss" -detect_leaks=1 \
+    -max_len="${max_len[$t]}" -dict="tests/fuzz/$([[ $t == lsp ]] && echo lsp || echo rrf).dict" -print_final_stats=1 \
+    -artifact_prefix="$work/artifacts/$t-" "$work/corpus/$t" "$work/seeds/$t" >"$log" 2>&1 || status=$?
+  elapsed=$(($(date +%s) - start))
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  cov=$(sed -n 's/.*[ \t]cov: \([0-9]*\).*/\1/p' "$log" | tail -1)
+  artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
+  findings=0
+  if [[ $status -ne 0 || -n "$artifact" ]]; then
+    findings=${artifact:-"exit $status, see $log"}
+    [[ -n "$artifact" ]] && findings="${artifact#"$root"/}"
+    failed=1
+    echo "fuzz: $t FOUND SOMETHING (exit $status): $findings" >&2
+    grep -m3 -E 'ERROR|SUMMARY|ALARM|runtime error|deadly signal|out-of-memory' "$log" >&2 || true
+  elif [[ -z "$execs" ]]; then
+    echo "fuzz: $t: no statistics in $log" >&2
+    failed=1
+    continue
+  fi
+  echo "fuzz: $t: ${execs:-?} executions in ${elapsed} s, cov ${cov:-?}, findings: $findings"
+  if [[ -n "$results" ]]; then
+    printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "${execs:-?}" "$elapsed" \
+      "${cov:-?}" "$findings" "$commit" >>"$results"
+  fi
+done
+if [[ -n "$results" ]]; then
+  # Totals over every recorded run.
+  awk -F'|' '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { gsub(/ /, "", $3); n[$3] += $4 } END { for (t in n) printf "fuzz: total %s: %d executions\n", t, n[t] }' \
+    "$results" | sort
+fi
+exit $failed

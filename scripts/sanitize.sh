@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (with leak detection): builds
+# everything with -fsanitize=address,undefined -fno-sanitize-recover=all in its own build folder, then runs every
+# ctest test (unit tests, fixtures, the CLI and language-server tests, which run this build's sanitized rrflint)
+# and the corpus tests. Passes only with zero sanitizer reports: any report aborts the process that made it (so
+# its test fails), and the reports are also written under the build folder and printed at the end.
+#
+#   scripts/sanitize.sh          (SANITIZE_BUILD_DIR: the build folder, default build-asan)
+#
+# Left out: the `scaffold` test, which builds a scratch copy of the sources of its own (not sanitized), so it adds
+# a whole build and tests nothing under the sanitizers; scripts/test.sh runs it.
+# Warnings are not errors here: GCC's warnings change with the sanitizers' instrumentation (false positives), and
+# the warnings gate is the ordinary build of scripts/test.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/setup.sh --test
+build=${SANITIZE_BUILD_DIR:-build-asan}
+launcher=()
+command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+start=$(date +%s)
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRRFLINT_WERROR=OFF -DBUILD_TESTING=ON \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" "${launcher[@]}" >/dev/null
+cmake --build "$build" -j"$(nproc)"
+built=$(date +%s)
+
+reports=$(cd "$build" && pwd)/sanitizer-reports
+rm -rf "$reports"
+mkdir -p "$reports"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:log_path=$reports/asan"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:abort_on_error=1:log_path=$reports/ubsan"
+export LSAN_OPTIONS="log_path=$reports/lsan"
+status=0
+(cd "$build" && ctest --output-on-failure -LE 'corpus|scaffold') || status=1
+(cd "$build" && ctest --output-on-failure -L corpus) || status=1
+end=$(date +%s)
+if compgen -G "$reports/*" >/dev/null; then
+  echo "sanitize: sanitizer reports:" >&2
+  cat "$reports"/* >&2
+  status=1
+fi
+echo "sanitize: build $((built - start)) s, tests $((end - built)) s, $( ((status == 0)) && echo passed || echo FAILED)"
+exit $status

@@ -1,0 +1,1 @@
+; CR-only, with a bare axis line that RRF sees only once the lines are splitM83X10 Y20M84
