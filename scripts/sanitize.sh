@@ -7,8 +7,9 @@
 #
 #   scripts/sanitize.sh          (SANITIZE_BUILD_DIR: the build folder, default build-asan)
 #
-# Left out: the `scaffold` test, which builds a scratch copy of the sources of its own (not sanitized), so it adds
-# a whole build and tests nothing under the sanitizers; scripts/test.sh runs it.
+# Left out, as they test nothing under the sanitizers and scripts/test.sh runs them: `scaffold`, which builds a
+# scratch copy of the sources of its own (not sanitized); `windows`, which cross-builds and runs rrflint.exe under
+# wine; `vscode`, the TypeScript extension's build and tests (npm).
 # Warnings are not errors here: GCC's warnings change with the sanitizers' instrumentation (false positives), and
 # the warnings gate is the ordinary build of scripts/test.sh.
 set -euo pipefail
@@ -31,7 +32,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:log_path=$reports/asan"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:abort_on_error=1:log_path=$reports/ubsan"
 export LSAN_OPTIONS="log_path=$reports/lsan"
 status=0
-(cd "$build" && ctest --output-on-failure -LE 'corpus|scaffold') || status=1
+(cd "$build" && ctest --output-on-failure -LE 'corpus|scaffold|windows|vscode') || status=1
 (cd "$build" && ctest --output-on-failure -L corpus) || status=1
 end=$(date +%s)
 if compgen -G "$reports/*" >/dev/null; then
