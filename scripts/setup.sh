@@ -12,7 +12,7 @@ if [[ "${1:-}" == "--test" ]]; then
   pkgs+=(neovim emacs-nox elpa-eglot)
   # The VS Code extension's build (scripts/vscode.sh, ctest -L vscode); a node from elsewhere brings its own npm.
   command -v npm >/dev/null 2>&1 || pkgs+=(nodejs npm)
-  pkgs+=(dpkg-dev groff-base man-db)  # tests/install_test.sh: cpack's .deb (dpkg-shlibdeps), the man page (groff, man -l)
+  pkgs+=(dpkg-dev file groff-base man-db)  # tests/install_test.sh: cpack's .deb (dpkg-shlibdeps, file), the man page
   pkgs+=(g++-mingw-w64-x86-64-posix wine64 zip unzip)  # scripts/windows.sh: the Windows build, zipped, run under wine
   pkgs+=(clang-14 libclang-rt-14-dev)  # scripts/fuzz.sh: the libFuzzer targets (clang 14, libFuzzer, ASan, UBSan)
 fi

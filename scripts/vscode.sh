@@ -4,18 +4,18 @@
 # binary), vsce package, then what the .vsix holds. Needs node 18+ and npm (Debian 12: nodejs, npm;
 # scripts/setup.sh --test installs them) and the npm registry for `npm ci`.
 #   scripts/vscode.sh                  build and check; fails when node or npm is missing
-#   scripts/vscode.sh --skip-missing   the same, but exit 77 (ctest: skipped) when node or npm is missing,
-#                                      unless CI=true, where a missing npm is a failure
+#   scripts/vscode.sh --skip-missing   the same, but exit 77 (ctest: skipped) when node or npm is missing or the
+#                                      registry cannot be reached, unless CI=true, where that is a failure
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 ext="$here/editors/vscode"
 
 missing() {
   if [[ "${1:-}" == "--skip-missing" && "${CI:-}" != "true" ]]; then
-    echo "vscode: SKIPPED: $2 (scripts/setup.sh --test installs node and npm)"
+    echo "vscode: SKIPPED: $2 (scripts/setup.sh --test installs node and npm; npm ci needs the npm registry)"
     exit 77
   fi
-  echo "vscode: $2; install Node 18 or later and npm (Debian: apt-get install nodejs npm, or scripts/setup.sh --test)" >&2
+  echo "vscode: $2; ${3:-install Node 18 or later and npm (Debian: apt-get install nodejs npm, or scripts/setup.sh --test)}" >&2
   exit 1
 }
 for tool in node npm; do
@@ -34,6 +34,12 @@ step() {
   echo "vscode: $*"
   "$@"
 }
+# The registry first: a machine that cannot reach it (offline, or behind a TLS proxy whose certificate it does not
+# trust) gets a clear message instead of npm's, and with --skip-missing a skip, except under CI=true.
+if ! reason=$(npm ping 2>&1); then
+  missing "${1:-}" "the npm registry is not reachable ($(grep -m1 -oE '(code|reason:?) [A-Za-z_: -]+' <<<"$reason" || echo "npm ping failed"))" \
+    "npm ci needs it (check the network, a proxy and its CA certificate: npm config get cafile)"
+fi
 step npm ci
 step npm run lint
 step npm run compile
