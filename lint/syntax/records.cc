@@ -1,5 +1,6 @@
 // The record tables: commands and lines stored as 20-byte records, and the line sets.
 
+#include <algorithm>
 #include <atomic>
 
 #include "lint/syntax/parse_internal.h"
@@ -46,11 +47,10 @@ std::vector<uint32_t> CommandTable::with_flag(Flag f) const {
 }
 
 const detail::CommandRec& CommandTable::tail_rec(size_t i) const {
-  // The last tail that starts at or before i's block of 64K commands, then on to i's own (tails of a few
-  // commands, in tests, may share a block).
-  size_t t = block_tail_[i >> 16];
-  while (t + 1 < tails_.size() && i >= tails_[t + 1].begin) ++t;
-  return tails_[t].recs[i - tails_[t].begin];
+  // The last tail that starts at or before i (tails of no commands share their begin with the next one, which
+  // upper_bound then picks). A binary search: a file parsed in many small parts has many tails.
+  const auto t = std::upper_bound(tails_.begin(), tails_.end(), i, [](size_t v, const Tail& x) { return v < x.begin; });
+  return (t - 1)->recs[i - (t - 1)->begin];
 }
 
 void CommandTable::append(CommandTable&& part) {
@@ -60,18 +60,17 @@ void CommandTable::append(CommandTable&& part) {
   tail_size_ += part.recs_.size();
   if (!part.key_counts_.empty()) {
     if (key_counts_.empty()) key_counts_.assign(part.key_counts_.size(), 0);
-    for (size_t k = 0; k < key_counts_.size(); ++k) key_counts_[k] += part.key_counts_[k];
+    if (part.recs_.size() < key_counts_.size() / 8) {
+      // A small part (tests parse in parts of a few bytes): count its records rather than add every key.
+      for (const detail::CommandRec& r : part.recs_) ++key_counts_[code_key(detail::letter_of(r.bits), r.number)];
+    } else {
+      for (size_t k = 0; k < key_counts_.size(); ++k) key_counts_[k] += part.key_counts_[k];
+    }
   }
   fraction_keys_.insert(fraction_keys_.end(), part.fraction_keys_.begin(), part.fraction_keys_.end());
   all_bits_ |= part.all_bits_;
   tails_.push_back(Tail{base, std::move(part.recs_)});
   part = CommandTable{};
-  block_tail_.assign((size() >> 16) + 1, 0);
-  uint32_t t = 0;
-  for (size_t b = 0; b < block_tail_.size(); ++b) {
-    while (t + 1 < tails_.size() && tails_[t + 1].begin <= b << 16) ++t;
-    block_tail_[b] = t;
-  }
 }
 
 uint32_t CommandTable::long_word_end(size_t i) const { return long_words_.at(static_cast<uint32_t>(i)); }

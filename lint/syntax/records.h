@@ -207,7 +207,6 @@ class CommandTable {
   };
   std::vector<Tail> tails_;
   size_t tail_size_ = 0;
-  std::vector<uint32_t> block_tail_;  // per block of 64K commands: the last tail starting at or before it
   void push_rec(const detail::CommandRec& r);
   // Kept as records are pushed, for index_codes: commands per code key, the keys of fractional commands (with
   // repeats), and the OR of every record's bits.
