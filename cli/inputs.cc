@@ -3,6 +3,7 @@
 // file's `exclude` are honoured while walking, and for explicitly named files only with --force-exclude.
 #include <fmt/format.h>
 #include <algorithm>
+#include <cstdio>
 
 #include <iostream>
 #include <unordered_map>
@@ -273,13 +274,16 @@ struct Planner {
 
   // `-`: standard input, as --stdin-filename places it.
   void add_stdin() {
-    std::string bytes((std::istreambuf_iterator<char>(std::cin)), {});
+    // Read in blocks: a character at a time through std::cin took half a second for 30 MB.
+    std::string bytes;
+    std::vector<char> block(size_t{1} << 16);
+    for (size_t n; (n = std::fread(block.data(), 1, block.size(), stdin)) > 0;) bytes.append(block.data(), n);
     fs::path name = po.stdin_filename.empty() ? fs::path("stdin.g") : fs::path(po.stdin_filename);
     // Standard input linted on its own, or (excluded) only echoed back by --fix.
     auto lone_stdin = [&](bool excluded) {
       Job j;
       j.standalone = name;
-      j.stdin_bytes = bytes;
+      j.stdin_bytes = std::move(bytes);
       j.title = name.string();
       j.excluded = excluded;
       j.explicit_path = !excluded;
@@ -295,7 +299,7 @@ struct Planner {
       if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
         Job& j = job_for_card(*at.card, po.stdin_filename);
         j.only.insert(to_lower(*at.sd));
-        j.stdin_bytes = bytes;
+        j.stdin_bytes = std::move(bytes);
         j.stdin_sd_path = *at.sd;
         j.explicit_path = true;
         return;

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <set>
+#include <vector>
 
 #include "lint/engine/rule.h"
 
@@ -41,30 +42,44 @@ if !exists(global.maxTemp)
 )md",
 };
 
-bool guarded(const ParsedFile& pf, size_t li) {
-  uint32_t threshold = pf.lines[li].indent;
-  for (size_t k = li; k-- > 0;) {
-    const Line& l = pf.lines[k];
-    if (l.kind != LineKind::Meta && l.kind != LineKind::Commands && l.kind != LineKind::Bad) continue;
-    if (l.indent >= threshold) continue;
-    // An enclosing block opener, or an else/elif whose if-chain is at the same indentation.
-    const uint32_t level = l.indent;
-    for (size_t j = k + 1; j-- > 0;) {
-      const Line& c = pf.lines[j];
-      if (c.kind != LineKind::Meta && c.kind != LineKind::Commands && c.kind != LineKind::Bad) continue;
-      if (c.indent < level) break;
-      if (c.indent > level) continue;
-      if ((c.meta == MetaKind::If || c.meta == MetaKind::Elif || c.meta == MetaKind::While) &&
-          pf.text(c.meta_arg).find("exists(global.") != std::string_view::npos)
-        return true;
-      if (j == k && (c.meta == MetaKind::Else || c.meta == MetaKind::Elif)) continue;  // walk its if-chain
-      if (j != k && c.meta == MetaKind::Elif) continue;
-      break;
+bool code_line(const Line& l) {
+  return l.kind == LineKind::Meta || l.kind == LineKind::Commands || l.kind == LineKind::Bad;
+}
+
+// Reports the unguarded declarations of one file in a single pass. The stack holds, innermost last, each line that
+// encloses the current one (the nearest earlier code line of smaller indentation, then the one enclosing that, and
+// so on): a declaration is guarded when one of them is an if/elif/while testing exists(global.…), or an elif/else
+// of an if-chain where an earlier if/elif does. A walk back from each declaration instead was quadratic: with
+// nothing enclosing a declaration at indentation 0, it walked to the start of the file.
+void check_file(const FileUnit& fu, Sink& out) {
+  const ParsedFile& pf = fu.parsed;
+  struct Open {
+    uint32_t indent;
+    bool tests;     // it, or the if-chain it ends, tests exists(global.…)
+    bool if_chain;  // an if or elif, which a following elif or else at its indentation continues
+    bool guarded;   // it or an enclosing line tests exists(global.…)
+  };
+  std::vector<Open> open;
+  for (size_t li = 0; li < pf.lines.size(); ++li) {
+    const Line& l = pf.lines[li];
+    if (!code_line(l)) continue;
+    while (!open.empty() && open.back().indent > l.indent) open.pop_back();
+    bool chain_tests = false;
+    if (!open.empty() && open.back().indent == l.indent) {
+      if (open.back().if_chain) chain_tests = open.back().tests;
+      open.pop_back();
     }
-    threshold = level;
-    if (level == 0) break;
+    const bool enclosed = !open.empty() && open.back().guarded;
+    if (l.meta == MetaKind::Global && !l.meta_name.empty() && !enclosed)
+      out.report(kMeta, Location{fu.source->id(), l.code},
+                 fmt::format("'global {}' has no 'exists(global.{})' guard: when config.g runs again (M502, M98 "
+                             "P\"config.g\") it fails with 'variable already exists' and aborts the rest of config.g",
+                             pf.text(l.meta_name), pf.text(l.meta_name)));
+    const bool opener = l.meta == MetaKind::If || l.meta == MetaKind::Elif || l.meta == MetaKind::While;
+    const bool tests = (opener && pf.text(l.meta_arg).find("exists(global.") != std::string_view::npos) ||
+                       ((l.meta == MetaKind::Elif || l.meta == MetaKind::Else) && chain_tests);
+    open.push_back({l.indent, tests, l.meta == MetaKind::If || l.meta == MetaKind::Elif, enclosed || tests});
   }
-  return false;
 }
 
 void check(const EndContext& cx, Sink& out) {
@@ -76,19 +91,7 @@ void check(const EndContext& cx, Sink& out) {
       return false;
     });
   }
-  for (uint32_t u : boot_units) {
-    const FileUnit& fu = cx.machine.unit(u);
-    const ParsedFile& pf = fu.parsed;
-    for (size_t li = 0; li < pf.lines.size(); ++li) {
-      const Line& l = pf.lines[li];
-      if (l.meta != MetaKind::Global || l.meta_name.empty()) continue;
-      if (guarded(pf, li)) continue;
-      out.report(kMeta, Location{fu.source->id(), l.code},
-                 fmt::format("'global {}' has no 'exists(global.{})' guard: when config.g runs again (M502, M98 "
-                             "P\"config.g\") it fails with 'variable already exists' and aborts the rest of config.g",
-                             pf.text(l.meta_name), pf.text(l.meta_name)));
-    }
-  }
+  for (uint32_t u : boot_units) check_file(cx.machine.unit(u), out);
 }
 
 }  // namespace

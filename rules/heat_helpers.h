@@ -4,6 +4,9 @@
 #pragma once
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
@@ -39,15 +42,42 @@ inline bool judged_elsewhere(const Machine& m, const Graph& g, NodeId id) {
 }
 inline bool judged_elsewhere(const NodeContext& cx) { return judged_elsewhere(cx.machine, cx.graph, cx.id); }
 
-/// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when an
-/// M950 on the way creates a device of that kind from an expression (it may be n).
-inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& unknown) {
-  unknown = false;
-  return tools::find_later(cx, 'M', 950, [&](const tools::NodeCommand& k) {
-    auto v = get_int(*k.pf, *k.c, letter);
-    if (v.unknown()) unknown = true;
-    return unknown || (v.known() && v.value == n && k.pf->find(*k.c, 'C'));
+/// The M950 commands of the graph that name a device of one kind (`letter`): by number those that create it (with
+/// C), and those whose number is an expression. Built once per kind (Graph::derived) for later_creation.
+struct Creations {
+  std::unordered_map<int, std::vector<NodeId>> creates;
+  std::vector<NodeId> unknown;
+};
+inline const Creations& creations(const NodeContext& cx, char letter) {
+  return cx.graph.derived<Creations>(std::string("heat.m950.") + letter, [&] {
+    Creations out;
+    for (const NodeId id : *cx.graph.code_nodes(cx.machine, 'M', 950)) {
+      const Node n = cx.graph.nodes[id];
+      const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+      const Command c = pf.commands[n.index];
+      if (c.fraction >= 0) continue;
+      auto v = get_int(pf, c, letter);
+      if (v.unknown()) out.unknown.push_back(id);
+      else if (v.known() && pf.find(c, 'C')) out.creates[static_cast<int>(v.value)].push_back(id);
+    }
+    return out;
   });
+}
+
+/// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when the
+/// first M950 on the way that may create it creates a device of that kind from an expression (it may be n).
+inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& unknown) {
+  const Creations& c = creations(cx, letter);
+  const NodeId end = cx.segment().end;
+  auto first_after = [&](const std::vector<NodeId>& ids) {
+    auto it = std::upper_bound(ids.begin(), ids.end(), cx.id);
+    return it != ids.end() && *it < end ? *it : kNoNode;
+  };
+  const auto it = c.creates.find(n);
+  const NodeId creates = it == c.creates.end() ? kNoNode : first_after(it->second);
+  const NodeId maybe = first_after(c.unknown);
+  unknown = maybe < creates;
+  return unknown ? maybe : creates;
 }
 
 using tools::runs_again;

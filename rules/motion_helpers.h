@@ -15,11 +15,11 @@
 namespace rrflint::motion {
 
 /// Commands that take per-axis values and loop over the axes that exist (RRF201's list).
-inline bool is_axis_command(const Command& c) {
-  if (c.fraction >= 0) return false;
-  if (c.letter == 'G') return c.number == 31;
-  if (c.letter != 'M') return false;
-  switch (c.number) {
+inline bool is_axis_code(char letter, int32_t number, int fraction) {
+  if (fraction >= 0) return false;
+  if (letter == 'G') return number == 31;
+  if (letter != 'M') return false;
+  switch (number) {
     case 92:
     case 201:
     case 203:
@@ -36,6 +36,7 @@ inline bool is_axis_command(const Command& c) {
     default: return false;
   }
 }
+inline bool is_axis_command(const Command& c) { return is_axis_code(c.letter, c.number, c.fraction); }
 
 /// Letters that are parameters, not axes, of an axis command.
 inline bool is_own_parameter(const Command& c, char letter) {
@@ -104,9 +105,8 @@ inline void apply_m584(DriveMap& m, const ParsedFile& pf, const Command& c, bool
 
 /// Applies the M584 commands of nodes (from, to) to the map.
 inline void advance(DriveMap& m, const NodeContext& cx, NodeId from, NodeId to) {
-  cx.graph.nodes.find_if(from + 1, to, [&](NodeId, const Node& n) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (k.is('M', 584)) apply_m584(m, *k.pf, *k.c, n.maybe);
+  tools::find_code(cx, from, to, 'M', 584, [&](const tools::NodeCommand& k) {
+    apply_m584(m, *k.pf, *k.c, k.node.maybe);
     return false;
   });
 }
@@ -135,10 +135,8 @@ struct Dependent {
 /// Is the setting of `letter` by a command of `number` sent again after the M584 at `m` (any later command of that
 /// code naming it, even conditional or unknown)? Then the drivers it adds receive it after all.
 inline bool reapplied_after(const NodeContext& cx, NodeId m, int number, char letter) {
-  return cx.graph.nodes.find_if(m + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    return k.is('M', number) && k.pf->find(*k.c, letter);
-  }) != kNoNode;
+  return tools::find_code(cx, m, cx.segment().end, 'M', number,
+                          [&](const tools::NodeCommand& k) { return bool(k.pf->find(*k.c, letter)); }) != kNoNode;
 }
 
 /// The value an M350/M906/M913/M917 sets for extruder i: RRF repeats the last value of a short list. Unknown (an
@@ -188,10 +186,8 @@ inline std::vector<DriverId> lost_setting(const NodeContext& cx, const tools::No
 
 /// The first M584 after node `from` in this segment that names `letter`; kNoNode if none.
 inline NodeId next_m584(const NodeContext& cx, NodeId from, char letter) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    return k.is('M', 584) && k.pf->find(*k.c, letter);
-  });
+  return tools::find_code(cx, from, cx.segment().end, 'M', 584,
+                          [&](const tools::NodeCommand& k) { return bool(k.pf->find(*k.c, letter)); });
 }
 
 /// Can the M584 make earlier commands lose effect at all: does it create an axis, or add drivers to an axis or an
@@ -225,10 +221,11 @@ inline NodeId walk_start(const NodeContext& cx, const tools::NodeCommand& mk, No
     letters += L;
   }
   if (mk.pf->find(*mk.c, 'E')) letters += 'E';
-  for (NodeId i = m; i > begin; --i) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, i - 1);
-    if (!k || !k.is('M', 584)) continue;
-    if (std::all_of(letters.begin(), letters.end(), [&](char L) { return bool(k.pf->find(*k.c, L)); })) return i - 1;
+  const std::vector<NodeId>& m584s = *cx.graph.code_nodes(cx.machine, 'M', 584);
+  for (auto it = std::lower_bound(m584s.begin(), m584s.end(), m); it != m584s.begin() && *(it - 1) >= begin;) {
+    const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, *--it);
+    if (!k.is('M', 584)) continue;
+    if (std::all_of(letters.begin(), letters.end(), [&](char L) { return bool(k.pf->find(*k.c, L)); })) return *it;
   }
   return begin;
 }
@@ -242,6 +239,9 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
   if (!mk || !at.axes_known || !changes_mapping(mk, at)) return out;
   std::map<char, std::vector<std::pair<NodeId, tools::NodeCommand>>> pending;  // RRF203 candidates by letter
   cx.graph.nodes.find_if(walk_start(cx, mk, m, at), m, [&](NodeId i, const Node& n) {
+    if (n.kind != NodeKind::Command) return false;
+    const CommandTable::Code code = cx.machine.unit(n.unit).parsed.commands.code(n.index);
+    if (!code.is('M', 584) && !is_axis_code(code.letter, code.number, code.fraction)) return false;  // no decoding
     const tools::NodeCommand k = tools::command_at(cx.machine, n);
     if (!k) return false;
     if (k.is('M', 584)) {

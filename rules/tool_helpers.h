@@ -56,17 +56,30 @@ inline NodeCommand command_at(const Machine& m, const Node& n) {
 }
 inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) { return command_at(m, g.nodes[id]); }
 
-/// The first command node after this one in its segment with code `letter` `number` (no fraction) for which
-/// `pred(command)` holds; kNoNode if none. Other commands are passed over on their code alone.
+/// The first command node in (from, to) with code `letter` `number` (no fraction) for which `pred(command)` holds;
+/// kNoNode if none. It visits only the nodes of that code (Graph::code_nodes).
 template <class Pred>
-NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
-  return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
+NodeId find_code(const NodeContext& cx, NodeId from, NodeId to, char letter, int number, Pred pred) {
+  auto matches = [&](const Node& n) {
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const CommandTable::Code code = pf.commands.code(n.index);
     return code.letter == letter && code.number == number && code.fraction < 0 &&
            pred(NodeCommand{&pf, pf.commands[n.index], n});
-  });
+  };
+  if (const std::vector<NodeId>* ids = cx.graph.code_nodes(cx.machine, letter, number)) {
+    for (auto it = std::upper_bound(ids->begin(), ids->end(), from); it != ids->end() && *it < to; ++it)
+      if (matches(cx.graph.nodes[*it])) return *it;
+    return kNoNode;
+  }
+  return cx.graph.nodes.find_if(from + 1, to,
+                                [&](NodeId, const Node& n) { return n.kind == NodeKind::Command && matches(n); });
+}
+
+/// The first command node after this one in its segment with code `letter` `number` (no fraction) for which
+/// `pred(command)` holds; kNoNode if none.
+template <class Pred>
+NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
+  return find_code(cx, cx.id, cx.segment().end, letter, number, pred);
 }
 
 /// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?

@@ -6,6 +6,7 @@
 #include "lint/boot/stretches.h"
 
 #include <algorithm>
+#include <mutex>
 #include <set>
 #include <unordered_map>
 
@@ -52,6 +53,37 @@ void NodeTable::push_commands(const Node& n, uint32_t count) {
   if (frames_.empty() || !same(frames_.back())) frames_.push_back(f);
   runs_.push_back(Run{static_cast<NodeId>(size_), static_cast<uint32_t>(frames_.size() - 1), n.index});
   grow(count);
+}
+
+class CodeNodeCache {
+ public:
+  std::mutex mutex;
+  std::unordered_map<uint32_t, std::vector<NodeId>> by_code;  // letter << 16 | number; references stay valid
+  std::recursive_mutex derived_mutex;
+  std::unordered_map<std::string, std::shared_ptr<void>> derived;
+};
+
+std::recursive_mutex& Graph::derived_mutex() const { return code_nodes_->derived_mutex; }
+std::shared_ptr<void>& Graph::derived_slot(const std::string& key) const { return code_nodes_->derived[key]; }
+
+Graph::Graph() : code_nodes_(std::make_unique<CodeNodeCache>()) {}
+Graph::~Graph() = default;
+Graph::Graph(Graph&& o) noexcept = default;
+Graph& Graph::operator=(Graph&& o) noexcept = default;
+
+const std::vector<NodeId>* Graph::code_nodes(const Machine& m, char letter, int32_t number) const {
+  if ((letter != 'G' && letter != 'M') || number < 0 || number >= 1024) return nullptr;
+  const uint32_t key = static_cast<uint32_t>(letter) << 16 | static_cast<uint32_t>(number);
+  std::lock_guard<std::mutex> lock(code_nodes_->mutex);
+  auto [it, fresh] = code_nodes_->by_code.try_emplace(key);
+  if (!fresh) return &it->second;
+  std::vector<NodeId>& out = it->second;
+  nodes.each_command_run([&](NodeId first, uint32_t unit, uint32_t index, uint32_t count) {
+    const std::span<const uint32_t> cmds = m.unit(unit).parsed.with_code(letter, number).indices();
+    for (auto c = std::lower_bound(cmds.begin(), cmds.end(), index); c != cmds.end() && *c < index + count; ++c)
+      out.push_back(first + (*c - index));
+  });
+  return &out;
 }
 
 namespace {

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -106,6 +108,16 @@ class NodeTable {
   }
   /// How many entries the table keeps (tests and traces: runs and whole nodes).
   size_t entries() const { return runs_.size(); }
+  /// Calls f(first, unit, index, count) for each run of command nodes, in order: nodes [first, first + count) run
+  /// commands [index, index + count) of `unit`.
+  template <class F>
+  void each_command_run(F f) const {
+    for (size_t r = 0; r < runs_.size(); ++r) {
+      if (runs_[r].frame == kFull) continue;
+      const NodeId end = r + 1 < runs_.size() ? runs_[r + 1].first : static_cast<NodeId>(size_);
+      f(runs_[r].first, frames_[runs_[r].frame].unit, runs_[r].index, end - runs_[r].first);
+    }
+  }
 
  private:
   static constexpr uint32_t kFull = UINT32_MAX;
@@ -153,7 +165,13 @@ class NodeTable {
   size_t size_ = 0;
 };
 
+class CodeNodeCache;
+
 struct Graph {
+  Graph();
+  ~Graph();
+  Graph(Graph&&) noexcept;
+  Graph& operator=(Graph&&) noexcept;
   NodeTable nodes;
   std::vector<Segment> segments;
   std::vector<GraphEvent> events;
@@ -162,6 +180,27 @@ struct Graph {
   /// followed them, so the model need not take them as "anything may happen".
   std::vector<NodeId> evaluated_calls;
   bool evaluated(NodeId id) const { return std::binary_search(evaluated_calls.begin(), evaluated_calls.end(), id); }
+  /// The command nodes that run a command of this code (any fraction), in order; nullptr for a number outside
+  /// 0…1023, which has no index (walk the nodes then). Built for a code the first time it is asked for, from each
+  /// file's code index (ParsedFile::with_code), at a cost in the runs of the graph and the code's commands: a rule
+  /// that looks for "the next M950" jumps to it instead of walking every node to the end. Thread-safe; the graph must
+  /// not change afterwards.
+  const std::vector<NodeId>* code_nodes(const Machine& m, char letter, int32_t number) const;
+  /// A value derived from the graph (an index that a rule builds once rather than walking the nodes for each
+  /// command it checks), built by `build()` the first time `key` is asked for and kept with the graph. Thread-safe:
+  /// rules run in parallel; a build may ask for other derived values or code_nodes.
+  template <class T, class Build>
+  const T& derived(const std::string& key, Build build) const {
+    std::lock_guard<std::recursive_mutex> lock(derived_mutex());
+    std::shared_ptr<void>& slot = derived_slot(key);
+    if (!slot) slot = std::make_shared<T>(build());
+    return *static_cast<const T*>(slot.get());
+  }
+
+ private:
+  std::recursive_mutex& derived_mutex() const;
+  std::shared_ptr<void>& derived_slot(const std::string& key) const;
+  std::unique_ptr<CodeNodeCache> code_nodes_;
 };
 
 struct GraphOptions {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <span>
 #include <vector>
 
 #include "lint/syntax/records.h"
@@ -114,6 +115,8 @@ class CodeCommands {
   iterator end() const { return {end_, end_, table_, text_}; }
   bool empty() const { return begin_ == end_; }
   size_t size() const { return static_cast<size_t>(end_ - begin_); }
+  /// The command indices themselves, ascending (for a binary search).
+  std::span<const uint32_t> indices() const { return {begin_, end_}; }
 
  private:
   const uint32_t* begin_ = nullptr;
