@@ -1,6 +1,8 @@
 // RRF211 device-recreated: M950 re-creates a heater or fan after M307/M301/M143/M570 or M106 configured it, and
 // the new device starts from the defaults.
 #include <fmt/format.h>
+#include <algorithm>
+#include <span>
 
 #include <string>
 #include <utility>
@@ -118,20 +120,25 @@ void check(const NodeContext& cx, Sink& out) {
   }
   if (created == kNoNode) return;
   // The first configuring command of each code since the creation, unless one of that code follows this line.
-  std::vector<std::pair<int, NodeId>> lost_at;  // code, node (kNoNode: set again later)
+  std::vector<std::pair<NodeId, int>> first;  // node, code: in the order they ran
   bool unknown = false, reconfigured = false;
-  heat::each_since(cx, created, [&](NodeId id, const Node& node) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, node);
-    if (!configures(k, letter, n, unknown)) return;
-    const int code = k.c->number;
-    for (const auto& [seen, at] : lost_at)
-      if (seen == code) return;
+  static constexpr int kFanCodes[] = {106}, kHeaterCodes[] = {307, 301, 143, 570};
+  for (const int code : letter == 'F' ? std::span<const int>(kFanCodes) : std::span<const int>(kHeaterCodes)) {
+    NodeId at = kNoNode;
+    heat::each_since_code(cx, created, 'M', code, [&](NodeId id, const tools::NodeCommand& k) {
+      if (configures(k, letter, n, unknown) && at == kNoNode) at = id;
+    });
+    if (at != kNoNode) first.emplace_back(at, code);
+  }
+  std::sort(first.begin(), first.end());
+  std::vector<std::pair<int, NodeId>> lost_at;  // code, node (kNoNode: set again later)
+  for (const auto& [id, code] : first) {
     const bool again = tools::find_later(cx, 'M', code, [&](const tools::NodeCommand& l) {
                          return configures(l, letter, n, unknown);
                        }) != kNoNode;
     lost_at.emplace_back(code, again ? kNoNode : id);
     reconfigured = reconfigured || again;
-  });
+  }
   // A macro run after boot that sets the device up again after re-creating it does so on purpose (a swap, a whole
   // alternative config): what it leaves out is its choice.
   if (reconfigured && !cx.in_boot()) return;

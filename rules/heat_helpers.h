@@ -82,17 +82,19 @@ inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& un
 
 using tools::runs_again;
 
-/// Calls f(id, node) for each node that ran after node `from` and before this one: in this segment, or, for a
-/// macro run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.
+/// Calls f(id, command) for each command of code `letter` `number` (no fraction; `number` 0…1023) that ran after
+/// node `from` and before this one: in this segment, or, for a macro run after boot, from `from` to the end of its
+/// segment (the boot) and then this segment up to here. It visits only the nodes of that code (Graph::code_nodes).
 template <class F>
-void each_since(const NodeContext& cx, NodeId from, F f) {
-  const Segment& here = cx.segment();
+void each_since_code(const NodeContext& cx, NodeId from, char letter, int number, F f) {
+  const std::vector<NodeId>& ids = *cx.graph.code_nodes(cx.machine, letter, number);
   auto walk = [&](NodeId b, NodeId e) {
-    cx.graph.nodes.find_if(b, e, [&](NodeId id, const Node& n) {
-      f(id, n);
-      return false;
-    });
+    for (auto it = std::lower_bound(ids.begin(), ids.end(), b); it != ids.end() && *it < e; ++it) {
+      const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, *it);
+      if (k.is(letter, number)) f(*it, k);
+    }
   };
+  const Segment& here = cx.segment();
   if (from >= here.begin) return walk(from + 1, cx.id);
   for (const Segment& sg : cx.graph.segments)
     if (from >= sg.begin && from < sg.end) walk(from + 1, sg.end);

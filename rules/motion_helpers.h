@@ -15,26 +15,11 @@
 namespace rrflint::motion {
 
 /// Commands that take per-axis values and loop over the axes that exist (RRF201's list).
+inline constexpr int32_t kAxisMCodes[] = {92, 201, 203, 205, 206, 208, 350, 566, 574, 906, 913, 915, 917};
 inline bool is_axis_code(char letter, int32_t number, int fraction) {
   if (fraction >= 0) return false;
   if (letter == 'G') return number == 31;
-  if (letter != 'M') return false;
-  switch (number) {
-    case 92:
-    case 201:
-    case 203:
-    case 205:
-    case 206:
-    case 208:
-    case 350:
-    case 566:
-    case 574:
-    case 906:
-    case 913:
-    case 915:
-    case 917: return true;
-    default: return false;
-  }
+  return letter == 'M' && std::find(std::begin(kAxisMCodes), std::end(kAxisMCodes), number) != std::end(kAxisMCodes);
 }
 inline bool is_axis_command(const Command& c) { return is_axis_code(c.letter, c.number, c.fraction); }
 
@@ -238,18 +223,27 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
   const tools::NodeCommand mk = tools::command_at(cx.machine, cx.graph, m);
   if (!mk || !at.axes_known || !changes_mapping(mk, at)) return out;
   std::map<char, std::vector<std::pair<NodeId, tools::NodeCommand>>> pending;  // RRF203 candidates by letter
-  cx.graph.nodes.find_if(walk_start(cx, mk, m, at), m, [&](NodeId i, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const CommandTable::Code code = cx.machine.unit(n.unit).parsed.commands.code(n.index);
-    if (!code.is('M', 584) && !is_axis_code(code.letter, code.number, code.fraction)) return false;  // no decoding
+  // The M584 and axis commands since the walk's start, in order, from the code index (no walk of every node).
+  const NodeId start = walk_start(cx, mk, m, at);
+  std::vector<NodeId> ids;
+  auto take = [&](char letter, int32_t number) {
+    const std::vector<NodeId>& all = *cx.graph.code_nodes(cx.machine, letter, number);
+    ids.insert(ids.end(), std::lower_bound(all.begin(), all.end(), start), std::lower_bound(all.begin(), all.end(), m));
+  };
+  take('M', 584);
+  take('G', 31);
+  for (const int32_t code : kAxisMCodes) take('M', code);
+  std::sort(ids.begin(), ids.end());
+  for (const NodeId i : ids) {
+    const Node n = cx.graph.nodes[i];
     const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (!k) return false;
+    if (!k) continue;
     if (k.is('M', 584)) {
       for (auto& [L, list] : pending)
         if (k.pf->find(*k.c, L)) list.clear();
-      return false;
+      continue;
     }
-    if (!is_axis_command(*k.c)) return false;
+    if (!is_axis_command(*k.c)) continue;
     const bool settings = k.is('M', 350) || (k.c->fraction < 0 && is_current_code(k.c->number));
     for (const Param& p : k.pf->params(*k.c)) {
       const char L = p.letter;
@@ -263,8 +257,7 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
         pending[L].push_back({i, k});
       }
     }
-    return false;
-  });
+  }
   for (auto& [L, list] : pending) {
     if (!mk.pf->find(*mk.c, L)) continue;
     const DriveMap::Entry* e = L == 'E' ? nullptr : at.axis(L);

@@ -74,8 +74,7 @@ bool g31_sets(const ParsedFile& pf, const Command& c) {
 }
 
 /// Does this node's G31 set probe k (or may it: K{…})?
-bool g31_for(const NodeContext& cx, const Node& n, int k) {
-  const tools::NodeCommand nc = tools::command_at(cx.machine, n);
+bool g31_for(const tools::NodeCommand& nc, int k) {
   if (!nc.is('G', 31) || !g31_sets(*nc.pf, *nc.c)) return false;
   const heat::DeviceRef r = probe_named(*nc.pf, *nc.c);
   return !r.known || r.number == k;
@@ -83,8 +82,8 @@ bool g31_for(const NodeContext& cx, const Node& n, int k) {
 
 /// Is probe k set by a G31 after node `from` in this segment?
 bool g31_later(const NodeContext& cx, NodeId from, int k) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) { return g31_for(cx, n, k); }) !=
-         kNoNode;
+  return tools::find_code(cx, from, cx.segment().end, 'G', 31,
+                          [&](const tools::NodeCommand& nc) { return g31_for(nc, k); }) != kNoNode;
 }
 
 void check_g31(const NodeContext& cx, Sink& out) {
@@ -125,8 +124,8 @@ void check_m558(const NodeContext& cx, Sink& out) {
   auto it = s.probes.find(k.number);
   if (it == s.probes.end() || it->second.maybe || it->second.created == kNoNode) return;
   NodeId g31 = kNoNode;  // the last G31 that set the probe since its creation
-  heat::each_since(cx, it->second.created, [&](NodeId id, const Node& n) {
-    if (g31_for(cx, n, k.number)) g31 = id;
+  heat::each_since_code(cx, it->second.created, 'G', 31, [&](NodeId id, const tools::NodeCommand& nc) {
+    if (g31_for(nc, k.number)) g31 = id;
   });
   if (g31 == kNoNode || g31_later(cx, cx.id, k.number)) return;  // set again after
   Report rep = out.report(kMeta, Severity::Warning, cx.at(c.span),

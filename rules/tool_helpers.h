@@ -84,7 +84,42 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
 
 /// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
 /// The device, axis and extruder order rules stay silent then (RRF201, RRF202, RRF205, RRF209, RRF213).
+/// Per file unit, the commands that more than one command node runs (a macro called twice), from the runs of the
+/// graph: the only lines for which runs_again must walk the nodes. Built once per graph (Graph::derived).
+struct RepeatedLines {
+  std::vector<std::vector<bool>> by_unit;  // empty for a unit none of whose lines runs twice
+  bool repeated(const Node& n) const {
+    return n.unit < by_unit.size() && n.index < by_unit[n.unit].size() && by_unit[n.unit][n.index];
+  }
+};
+inline const RepeatedLines& repeated_lines(const Graph& g) {
+  return g.derived<RepeatedLines>("tools.repeated_lines", [&] {
+    std::vector<std::vector<int32_t>> cover;  // per unit, a difference array of how many runs cover each command
+    g.nodes.each_command_run([&](NodeId, uint32_t unit, uint32_t index, uint32_t count) {
+      if (cover.size() <= unit) cover.resize(unit + 1);
+      std::vector<int32_t>& c = cover[unit];
+      if (c.size() < size_t{index} + count + 1) c.resize(size_t{index} + count + 1, 0);
+      ++c[index];
+      --c[index + count];
+    });
+    RepeatedLines out;
+    out.by_unit.resize(cover.size());
+    for (size_t u = 0; u < cover.size(); ++u) {
+      std::vector<bool> twice(cover[u].size());
+      bool any = false;
+      int32_t runs = 0;
+      for (size_t i = 0; i < cover[u].size(); ++i) {
+        runs += cover[u][i];
+        if (runs > 1) twice[i] = any = true;
+      }
+      if (any) out.by_unit[u] = std::move(twice);
+    }
+    return out;
+  });
+}
+
 inline bool runs_again(const Graph& g, const Node& self, NodeId from, NodeId end) {
+  if (!repeated_lines(g).repeated(self)) return false;  // it runs once: no walk
   return g.nodes.find_if(from + 1, end, [&](NodeId, const Node& n) {
     return n.kind == NodeKind::Command && n.unit == self.unit && n.index == self.index;
   }) != kNoNode;
