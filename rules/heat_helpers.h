@@ -51,15 +51,13 @@ struct Creations {
 inline const Creations& creations(const NodeContext& cx, char letter) {
   return cx.graph.derived<Creations>(std::string("heat.m950.") + letter, [&] {
     Creations out;
-    for (const NodeId id : *cx.graph.code_nodes(cx.machine, 'M', 950)) {
-      const Node n = cx.graph.nodes[id];
-      const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
-      const Command c = pf.commands[n.index];
-      if (c.fraction >= 0) continue;
-      auto v = get_int(pf, c, letter);
+    const auto all = static_cast<NodeId>(cx.graph.nodes.size());
+    tools::each_code_node(cx, 0, all, 'M', 950, [&](NodeId id, const tools::NodeCommand& k) {
+      auto v = get_int(*k.pf, *k.c, letter);
       if (v.unknown()) out.unknown.push_back(id);
-      else if (v.known() && pf.find(c, 'C')) out.creates[static_cast<int>(v.value)].push_back(id);
-    }
+      else if (v.known() && k.pf->find(*k.c, 'C')) out.creates[static_cast<int>(v.value)].push_back(id);
+      return false;
+    });
     return out;
   });
 }
@@ -84,15 +82,14 @@ using tools::runs_again;
 
 /// Calls f(id, command) for each command of code `letter` `number` (no fraction; `number` 0…1023) that ran after
 /// node `from` and before this one: in this segment, or, for a macro run after boot, from `from` to the end of its
-/// segment (the boot) and then this segment up to here. It visits only the nodes of that code (Graph::code_nodes).
+/// segment (the boot) and then this segment up to here (tools::each_code_node).
 template <class F>
 void each_since_code(const NodeContext& cx, NodeId from, char letter, int number, F f) {
-  const std::vector<NodeId>& ids = *cx.graph.code_nodes(cx.machine, letter, number);
   auto walk = [&](NodeId b, NodeId e) {
-    for (auto it = std::lower_bound(ids.begin(), ids.end(), b); it != ids.end() && *it < e; ++it) {
-      const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, *it);
-      if (k.is(letter, number)) f(*it, k);
-    }
+    tools::each_code_node(cx, b, e, letter, number, [&](NodeId id, const tools::NodeCommand& k) {
+      f(id, k);
+      return false;
+    });
   };
   const Segment& here = cx.segment();
   if (from >= here.begin) return walk(from + 1, cx.id);

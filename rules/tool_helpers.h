@@ -56,23 +56,31 @@ inline NodeCommand command_at(const Machine& m, const Node& n) {
 }
 inline NodeCommand command_at(const Machine& m, const Graph& g, NodeId id) { return command_at(m, g.nodes[id]); }
 
-/// The first command node in (from, to) with code `letter` `number` (no fraction) for which `pred(command)` holds;
-/// kNoNode if none. It visits only the nodes of that code (Graph::code_nodes).
-template <class Pred>
-NodeId find_code(const NodeContext& cx, NodeId from, NodeId to, char letter, int number, Pred pred) {
-  auto matches = [&](const Node& n) {
+/// Calls f(id, command) for each command node in [begin, end) with code `letter` `number` (no fraction), in order,
+/// until it returns true; returns that node, or kNoNode. It visits only the nodes of that code (Graph::code_nodes;
+/// a number outside 0…1023 has no index and walks the nodes).
+template <class F>
+NodeId each_code_node(const NodeContext& cx, NodeId begin, NodeId end, char letter, int number, F f) {
+  auto visit = [&](NodeId id, const Node& n) {
     const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
     const CommandTable::Code code = pf.commands.code(n.index);
     return code.letter == letter && code.number == number && code.fraction < 0 &&
-           pred(NodeCommand{&pf, pf.commands[n.index], n});
+           f(id, NodeCommand{&pf, pf.commands[n.index], n});
   };
   if (const std::vector<NodeId>* ids = cx.graph.code_nodes(cx.machine, letter, number)) {
-    for (auto it = std::upper_bound(ids->begin(), ids->end(), from); it != ids->end() && *it < to; ++it)
-      if (matches(cx.graph.nodes[*it])) return *it;
+    for (auto it = std::lower_bound(ids->begin(), ids->end(), begin); it != ids->end() && *it < end; ++it)
+      if (visit(*it, cx.graph.nodes[*it])) return *it;
     return kNoNode;
   }
-  return cx.graph.nodes.find_if(from + 1, to,
-                                [&](NodeId, const Node& n) { return n.kind == NodeKind::Command && matches(n); });
+  return cx.graph.nodes.find_if(begin, end,
+                                [&](NodeId id, const Node& n) { return n.kind == NodeKind::Command && visit(id, n); });
+}
+
+/// The first command node in (from, to) with code `letter` `number` (no fraction) for which `pred(command)` holds;
+/// kNoNode if none.
+template <class Pred>
+NodeId find_code(const NodeContext& cx, NodeId from, NodeId to, char letter, int number, Pred pred) {
+  return each_code_node(cx, from + 1, to, letter, number, [&](NodeId, const NodeCommand& k) { return pred(k); });
 }
 
 /// The first command node after this one in its segment with code `letter` `number` (no fraction) for which
@@ -82,8 +90,6 @@ NodeId find_later(const NodeContext& cx, char letter, int number, Pred pred) {
   return find_code(cx, cx.id, cx.segment().end, letter, number, pred);
 }
 
-/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
-/// The device, axis and extruder order rules stay silent then (RRF201, RRF202, RRF205, RRF209, RRF213).
 /// Per file unit, the commands that more than one command node runs (a macro called twice), from the runs of the
 /// graph: the only lines for which runs_again must walk the nodes. Built once per graph (Graph::derived).
 struct RepeatedLines {
@@ -118,6 +124,8 @@ inline const RepeatedLines& repeated_lines(const Graph& g) {
   });
 }
 
+/// Does this very line run again after `from` (a macro called twice, a loop), where the setting then takes effect?
+/// The device, axis and extruder order rules stay silent then (RRF201, RRF202, RRF205, RRF209, RRF213).
 inline bool runs_again(const Graph& g, const Node& self, NodeId from, NodeId end) {
   if (!repeated_lines(g).repeated(self)) return false;  // it runs once: no walk
   return g.nodes.find_if(from + 1, end, [&](NodeId, const Node& n) {

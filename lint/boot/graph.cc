@@ -55,7 +55,7 @@ void NodeTable::push_commands(const Node& n, uint32_t count) {
   grow(count);
 }
 
-class CodeNodeCache {
+class GraphCache {
  public:
   std::mutex mutex;
   std::unordered_map<uint32_t, std::vector<NodeId>> by_code;  // letter << 16 | number; references stay valid
@@ -63,10 +63,10 @@ class CodeNodeCache {
   std::unordered_map<std::string, std::shared_ptr<void>> derived;
 };
 
-std::recursive_mutex& Graph::derived_mutex() const { return code_nodes_->derived_mutex; }
-std::shared_ptr<void>& Graph::derived_slot(const std::string& key) const { return code_nodes_->derived[key]; }
+std::recursive_mutex& Graph::derived_mutex() const { return cache_->derived_mutex; }
+std::shared_ptr<void>& Graph::derived_slot(const std::string& key) const { return cache_->derived[key]; }
 
-Graph::Graph() : code_nodes_(std::make_unique<CodeNodeCache>()) {}
+Graph::Graph() : cache_(std::make_unique<GraphCache>()) {}
 Graph::~Graph() = default;
 Graph::Graph(Graph&& o) noexcept = default;
 Graph& Graph::operator=(Graph&& o) noexcept = default;
@@ -74,8 +74,8 @@ Graph& Graph::operator=(Graph&& o) noexcept = default;
 const std::vector<NodeId>* Graph::code_nodes(const Machine& m, char letter, int32_t number) const {
   if ((letter != 'G' && letter != 'M') || number < 0 || number >= 1024) return nullptr;
   const uint32_t key = static_cast<uint32_t>(letter) << 16 | static_cast<uint32_t>(number);
-  std::lock_guard<std::mutex> lock(code_nodes_->mutex);
-  auto [it, fresh] = code_nodes_->by_code.try_emplace(key);
+  std::lock_guard<std::mutex> lock(cache_->mutex);
+  auto [it, fresh] = cache_->by_code.try_emplace(key);
   if (!fresh) return &it->second;
   std::vector<NodeId>& out = it->second;
   nodes.each_command_run([&](NodeId first, uint32_t unit, uint32_t index, uint32_t count) {

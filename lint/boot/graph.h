@@ -165,7 +165,7 @@ class NodeTable {
   size_t size_ = 0;
 };
 
-class CodeNodeCache;
+class GraphCache;
 
 struct Graph {
   Graph();
@@ -200,7 +200,7 @@ struct Graph {
  private:
   std::recursive_mutex& derived_mutex() const;
   std::shared_ptr<void>& derived_slot(const std::string& key) const;
-  std::unique_ptr<CodeNodeCache> code_nodes_;
+  std::unique_ptr<GraphCache> cache_;  // code_nodes and derived
 };
 
 struct GraphOptions {
