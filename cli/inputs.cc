@@ -3,7 +3,9 @@
 // file's `exclude` are honoured while walking, and for explicitly named files only with --force-exclude.
 #include <fmt/format.h>
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 #include <iostream>
 #include <unordered_map>
@@ -278,6 +280,12 @@ struct Planner {
     std::string bytes;
     std::vector<char> block(size_t{1} << 16);
     for (size_t n; (n = std::fread(block.data(), 1, block.size(), stdin)) > 0;) bytes.append(block.data(), n);
+    if (std::ferror(stdin)) {
+      // A read error (standard input a folder, a closed descriptor): not linted as if it were empty.
+      error(fmt::format("-: cannot read standard input: {}", std::strerror(errno)));
+      io_error = true;
+      return;
+    }
     fs::path name = po.stdin_filename.empty() ? fs::path("stdin.g") : fs::path(po.stdin_filename);
     // Standard input linted on its own, or (excluded) only echoed back by --fix.
     auto lone_stdin = [&](bool excluded) {

@@ -11,7 +11,9 @@
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "cli/cli.h"  // write_atomic (cli/fix.cc is built into the tests)
@@ -324,6 +326,22 @@ TEST_CASE("matrix: stdin and lone files", "[cli][matrix]") {
   o = run_guarded(t.root(), "check - --stdin-filename config.g --format concise", "M9999\n");
   CHECK(o.code == 1);
   CHECK_FALSE(contains(o.err, "note:"));
+}
+
+TEST_CASE("matrix: standard input that cannot be read is an I/O error, not an empty file", "[cli][matrix]") {
+  TempTree t;
+  t.write("sys/config.g", kGood);
+  // Standard input redirected from a folder: read() fails with EISDIR. The run must not pass over nothing.
+  const std::string out = (t.root() / "out.txt").string();
+  const std::string cmd = "cd " + shell_quote(t.root().string()) + " && " + shell_quote(RRFLINT_BINARY) +
+                          " check - --stdin-filename sys/config.g < sys > " + shell_quote(out) + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 2);
+  std::ifstream f(out);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  CHECK(contains(ss.str(), "cannot read standard input"));
 }
 
 TEST_CASE(
