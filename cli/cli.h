@@ -109,11 +109,11 @@ int run_config(const CliOptions& cli, const std::string& path);
 /// One machine to lint: a card on disk, or a lone file (or stdin).
 struct Job {
   std::optional<CardLocation> card;
-  fs::path standalone;                     // a lone file
-  std::set<std::string> only;              // lower-cased SD paths to report, unless report_all
-  bool report_all = false;                 // every file of the card (minus exclusions and .gitignore)
-  bool named_despite_exclusion = false;    // report_all although the card's folder is excluded: exclusions off
-  std::optional<std::string> stdin_bytes;  // content for `-`
+  fs::path standalone;                    // a lone file
+  std::set<std::string> only;             // lower-cased SD paths to report, unless report_all
+  bool report_all = false;                // every file of the card (minus exclusions and .gitignore)
+  bool named_despite_exclusion = false;   // report_all although the card's folder is excluded: exclusions off
+  std::optional<TextBuffer> stdin_bytes;  // content for `-` (shared with the reader and the source file)
   std::string stdin_sd_path;
   std::string title;
   bool explicit_path = false;                // named on the command line (exclusions only with --force-exclude)
@@ -185,7 +185,7 @@ class JobReader : public FileReader {
   explicit JobReader(const Job& job);
   ReadResult read(std::string_view sd_path) override;
   std::vector<std::string> list(std::string_view sd_dir) override;
-  void set(const std::string& sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
+  void set(const std::string& sd_path, TextBuffer bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
   /// The file on disk behind an SD path (nullopt for stdin or unknown); absolute and normal in a card.
   std::optional<std::string> disk_path(std::string_view sd_path) const;
 
@@ -193,7 +193,7 @@ class JobReader : public FileReader {
   const Job& job_;
   std::unique_ptr<DiskReader> disk_;
   std::string lone_sd_, lone_display_;
-  std::map<std::string, std::string> overlay_;
+  std::map<std::string, TextBuffer> overlay_;
 };
 
 // ---- fix.cc ----

@@ -2,6 +2,7 @@
 // config.g, or a sys folder), lone .g files and extensionless macros under macros/; .gitignore and the config
 // file's `exclude` are honoured while walking, and for explicitly named files only with --force-exclude.
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -278,6 +279,9 @@ struct Planner {
   void add_stdin() {
     // Read in blocks: a character at a time through std::cin took half a second for 30 MB.
     std::string bytes;
+    // Redirected from a file: its size is known, so the string does not grow (and copy) on the way.
+    if (struct stat st; ::fstat(0, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
+      bytes.reserve(static_cast<size_t>(st.st_size));
     std::vector<char> block(size_t{1} << 16);
     for (size_t n; (n = std::fread(block.data(), 1, block.size(), stdin)) > 0;) bytes.append(block.data(), n);
     if (std::ferror(stdin)) {
@@ -291,7 +295,7 @@ struct Planner {
     auto lone_stdin = [&](bool excluded) {
       Job j;
       j.standalone = name;
-      j.stdin_bytes = std::move(bytes);
+      j.stdin_bytes = TextBuffer(std::move(bytes));
       j.title = name.string();
       j.excluded = excluded;
       j.explicit_path = !excluded;
@@ -307,7 +311,7 @@ struct Planner {
       if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
         Job& j = job_for_card(*at.card, po.stdin_filename);
         j.only.insert(to_lower(*at.sd));
-        j.stdin_bytes = std::move(bytes);
+        j.stdin_bytes = TextBuffer(std::move(bytes));
         j.stdin_sd_path = *at.sd;
         j.explicit_path = true;
         return;

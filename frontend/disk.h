@@ -71,14 +71,14 @@ class DiskReader : public FileReader {
   /// spelled as the files on disk are.
   std::optional<std::string> locate(std::string_view sd_path, std::string* spelled = nullptr) const;
   /// Replaces a file's content (stdin, editor buffers).
-  void overlay(std::string sd_path, std::string bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
+  void overlay(std::string sd_path, TextBuffer bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
 
  private:
   std::filesystem::path disk_dir(std::string_view sd_dir) const;
   void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
   std::string root_, sys_, base_;   // absolute and lexically normal
   std::shared_ptr<DirCache> dirs_;  // each folder listed once (a card asks for many missing tool macros)
-  std::map<std::string, std::string> overlay_;
+  std::map<std::string, TextBuffer> overlay_;
 };
 
 /// Reads a whole file; nullopt with `error` set on failure.

@@ -283,10 +283,11 @@ inline bool repeated_run(const Graph& g, const std::vector<Dependent>& deps, siz
 
 /// How many distinct commands (lines of a file: a line run twice is one) the dependents are.
 inline size_t command_count(const Graph& g, const std::vector<Dependent>& deps) {
-  size_t n = 0;
-  for (size_t i = 0; i < deps.size(); ++i)
-    n += (i == 0 || deps[i].node != deps[i - 1].node) && !repeated_run(g, deps, i);
-  return n;
+  std::vector<std::pair<uint32_t, uint32_t>> lines;  // (unit, index): one per line, however often it ran
+  lines.reserve(deps.size());
+  for (const Dependent& d : deps) lines.emplace_back(g.nodes[d.node].unit, g.nodes[d.node].index);
+  std::sort(lines.begin(), lines.end());
+  return static_cast<size_t>(std::unique(lines.begin(), lines.end()) - lines.begin());
 }
 
 /// RRF213 reports an M584 that two or more earlier commands depend on.

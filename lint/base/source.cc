@@ -53,10 +53,17 @@ unsigned index_lf(const char* base, size_t b, size_t e, std::vector<uint32_t>& o
 
 }  // namespace
 
+TextBuffer::TextBuffer(std::string s) : size_(s.size()) {
+  if (s.empty()) return;
+  auto owner = std::make_shared<const std::string>(std::move(s));
+  bytes_ = std::shared_ptr<const char>(owner, owner->data());
+}
+
 TextBuffer TextBuffer::mapped(const char* data, size_t size) {
   TextBuffer b;
-  b.map_ = std::shared_ptr<const char>(data, [size](const char* p) { unmap_bytes(p, size); });
-  b.map_size_ = size;
+  b.bytes_ = std::shared_ptr<const char>(data, [size](const char* p) { unmap_bytes(p, size); });
+  b.size_ = size;
+  b.mapped_ = true;
   return b;
 }
 

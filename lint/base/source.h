@@ -63,26 +63,28 @@ struct LineEndings {
   bool cr_only() const { return cr > 0 && lf == 0 && crlf == 0; }
 };
 
-/// A file's bytes: a string of its own, or a read-only mapping of the file (large files, DiskReader). Copies share
-/// a mapping; the bytes never change either way.
+/// A file's bytes: a string, or a read-only mapping of the file (large files, DiskReader). The bytes never change,
+/// and copies share them.
 class TextBuffer {
  public:
   TextBuffer() = default;
-  TextBuffer(std::string s) : own_(std::move(s)) {}  // NOLINT: implicit, as bytes were strings before
-  TextBuffer(const char* s) : own_(s) {}             // NOLINT
+  TextBuffer(std::string s);                                 // NOLINT: implicit, as bytes were strings before
+  TextBuffer(const char* s) : TextBuffer(std::string(s)) {}  // NOLINT
   /// Takes over `size` bytes mapped at `data`; unmapped when the last copy goes.
   static TextBuffer mapped(const char* data, size_t size);
-  const char* data() const { return map_ ? map_.get() : own_.data(); }
-  size_t size() const { return map_ ? map_size_ : own_.size(); }
-  bool empty() const { return size() == 0; }
+  const char* data() const { return bytes_ ? bytes_.get() : ""; }
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
   char operator[](size_t i) const { return data()[i]; }
   operator std::string_view() const { return {data(), size()}; }  // NOLINT
-  bool is_mapped() const { return map_ != nullptr; }
+  bool is_mapped() const { return mapped_; }
 
  private:
-  std::string own_;
-  std::shared_ptr<const char> map_;
-  size_t map_size_ = 0;
+  // Shared: a 100 MB standard input that the job, the reader's overlay and the source file all hold is in memory
+  // once.
+  std::shared_ptr<const char> bytes_;
+  size_t size_ = 0;
+  bool mapped_ = false;
 };
 
 class SourceFile {

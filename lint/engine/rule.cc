@@ -36,8 +36,7 @@ Report Sink::report(const RuleMeta& meta, Severity sev, Location loc, std::strin
   d.severity = sev;
   d.loc = loc;
   d.message = std::move(message);
-  out_.push_back(std::move(d));
-  return Report(&out_.back());
+  return Report(&out_.push_back(std::move(d)));
 }
 
 Location NodeContext::where(NodeId other) const {

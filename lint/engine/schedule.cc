@@ -91,9 +91,9 @@ void run_file_rules_parallel(const Machine& m, const Target& target, const LintO
       });
   trace::mark("tasks joined");
   for (auto& d : later_directives) directives.push_back(std::move(d));
-  for (Sink& part : sinks)
-    for (Diagnostic& d : part.diagnostics()) sink.diagnostics().push_back(std::move(d));
-  for (Diagnostic& d : node_sink.diagnostics()) sink.diagnostics().push_back(std::move(d));
+  auto into_sink = [&](Diagnostic&& d) { sink.diagnostics().push_back(std::move(d)); };
+  for (Sink& part : sinks) part.diagnostics().drain(into_sink);
+  node_sink.diagnostics().drain(into_sink);
 }
 
 }  // namespace rrflint

@@ -83,7 +83,8 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     // there is an unlettered parameter), and a letter right after the word is a parameter, never an exponent.
     const uint64_t rest = code & ~below(q);
     if (const uint64_t first = solid & rest; first && !(letter & first & -first)) return false;
-    uint64_t params = ((param_letters | (letter & (uint64_t{1} << q))) & rest);
+    // (A word may end at the line's 64th byte: then nothing follows it, and a shift by 64 would be undefined.)
+    uint64_t params = (param_letters | (q < 64 ? letter & (uint64_t{1} << q) : 0)) & rest;
     uint32_t next = ce, seen = 0, np = 0;
     bool repeated = false;
     for (; params; params &= params - 1) {
