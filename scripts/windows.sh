@@ -29,7 +29,7 @@ version=$(sed -n 's/^project(rrflint VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
 name=rrflint-$version-windows-x86_64
 stage=$BUILD/$name
 rm -rf "$stage" "$BUILD/$name.zip"
-cmake --install "$BUILD" --prefix "$stage" >/dev/null
+cmake --install "$BUILD" --prefix "$stage" --strip >/dev/null
 cp README.md "$stage/"
 [[ -f LICENSE ]] && cp LICENSE "$stage/"
 (cd "$BUILD" && zip -qr "$name.zip" "$name")
