@@ -134,8 +134,7 @@ class DiagnosticList {
       take(std::move((*blocks_[i / kBlock])[i % kBlock]));
       if (i % kBlock == kBlock - 1 || i + 1 == size_) blocks_[i / kBlock].reset();
     }
-    blocks_.clear();
-    size_ = 0;
+    clear();
   }
 
  private:
