@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -175,44 +176,55 @@ inline NodeId next_m584(const NodeContext& cx, NodeId from, char letter) {
                           [&](const tools::NodeCommand& k) { return bool(k.pf->find(*k.c, letter)); });
 }
 
-/// Can the M584 make earlier commands lose effect at all: does it create an axis, or add drivers to an axis or an
-/// extruder? Most M584 commands do neither (a restated mapping), and then nothing needs to be walked.
-inline bool changes_mapping(const tools::NodeCommand& k, const DriveMap& at) {
+/// The letters (axes, and 'E' for the extruders) whose earlier values or settings the M584 `k` can make lose effect,
+/// when the drive mapping before it is `at`: `created`, the axes it creates (their earlier values were ignored), and
+/// `remapped`, the existing axes and the extruders it gives drivers they lacked (settings sent before miss those).
+struct MappingChange {
+  std::string created, remapped;
+  bool any() const { return !created.empty() || !remapped.empty(); }
+};
+inline MappingChange mapping_change(const tools::NodeCommand& k, const DriveMap& at) {
+  MappingChange out;
   for (char L : allowed_axis_letters()) {
     if (!k.pf->find(*k.c, L)) continue;
     const DriveMap::Entry* e = at.axis(L);
-    if (!e) return true;
+    if (!e) {
+      out.created += L;
+      continue;
+    }
     auto now = get_driver_list(*k.pf, *k.c, L);
     if (now.known() &&
         (!added_drivers(e->drivers, now.value, false).empty() || !added_drivers(e->drivers, now.value, true).empty()))
-      return true;
+      out.remapped += L;
   }
   auto now = get_driver_list(*k.pf, *k.c, 'E');
-  if (!now.known() || !at.extruders_known) return false;
+  if (!now.known() || !at.extruders_known) return out;
   for (size_t i = 0; i < std::min(now.value.size(), at.extruders.size()); ++i)
-    if (!(now.value[i] == at.extruders[i])) return true;
-  return false;
+    if (!(now.value[i] == at.extruders[i])) {
+      out.remapped += 'E';
+      break;
+    }
+  return out;
 }
 
-/// Where the walk for the M584 at `m` may start. When it creates no axis, only settings since the latest earlier
-/// M584 that names every letter it names can depend on it (that M584 cleared the older ones: see dependents()), so
-/// the walk starts there instead of at the start of the boot, which made a file of many M584s quadratic.
-inline NodeId walk_start(const NodeContext& cx, const tools::NodeCommand& mk, NodeId m, const DriveMap& at) {
+/// Where the walk for the M584 at `m` may start. When it creates an axis, any earlier value for that axis counts:
+/// the start of the segment. Otherwise only settings of a remapped letter since the latest earlier M584 that names
+/// that letter can depend on it (that M584 cleared the older ones: see dependents()), so the walk starts at the
+/// earliest of those M584s instead of at the start of the boot, which made a file of many M584s quadratic.
+inline NodeId walk_start(const NodeContext& cx, const MappingChange& change, NodeId m) {
   const NodeId begin = cx.segment().begin;
-  std::string letters;
-  for (char L : allowed_axis_letters()) {
-    if (!mk.pf->find(*mk.c, L)) continue;
-    if (!at.axis(L)) return begin;  // it creates an axis: any earlier value for it counts
-    letters += L;
-  }
-  if (mk.pf->find(*mk.c, 'E')) letters += 'E';
+  if (!change.created.empty()) return begin;
+  std::string open = change.remapped;  // letters whose latest earlier M584 is not found yet
+  NodeId start = m;
   const std::vector<NodeId>& m584s = *cx.graph.code_nodes(cx.machine, 'M', 584);
-  for (auto it = std::lower_bound(m584s.begin(), m584s.end(), m); it != m584s.begin() && *(it - 1) >= begin;) {
+  for (auto it = std::lower_bound(m584s.begin(), m584s.end(), m); !open.empty();) {
+    if (it == m584s.begin() || *(it - 1) < begin) return begin;
     const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, *--it);
     if (!k.is('M', 584)) continue;
-    if (std::all_of(letters.begin(), letters.end(), [&](char L) { return bool(k.pf->find(*k.c, L)); })) return *it;
+    std::erase_if(open, [&](char L) { return bool(k.pf->find(*k.c, L)); });
+    start = *it;
   }
-  return begin;
+  return start;
 }
 
 /// The earlier commands in this segment that lose effect because of the M584 at node `m`, whose drive mapping
@@ -221,18 +233,25 @@ inline NodeId walk_start(const NodeContext& cx, const tools::NodeCommand& mk, No
 inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const DriveMap& at) {
   std::vector<Dependent> out;
   const tools::NodeCommand mk = tools::command_at(cx.machine, cx.graph, m);
-  if (!mk || !at.axes_known || !changes_mapping(mk, at)) return out;
+  if (!mk || !at.axes_known) return out;
+  const MappingChange change = mapping_change(mk, at);
+  if (!change.any()) return out;
   std::map<char, std::vector<std::pair<NodeId, tools::NodeCommand>>> pending;  // RRF203 candidates by letter
-  // The M584 and axis commands since the walk's start, in order, from the code index (no walk of every node).
-  const NodeId start = walk_start(cx, mk, m, at);
+  // The M584 and axis commands since the walk's start, in order, from the code index (no walk of every node). When
+  // it creates no axis, only the settings that a remapped axis loses (M350 and the currents) are candidates.
+  const NodeId start = walk_start(cx, change, m);
   std::vector<NodeId> ids;
   auto take = [&](char letter, int32_t number) {
     const std::vector<NodeId>& all = *cx.graph.code_nodes(cx.machine, letter, number);
     ids.insert(ids.end(), std::lower_bound(all.begin(), all.end(), start), std::lower_bound(all.begin(), all.end(), m));
   };
   take('M', 584);
-  take('G', 31);
-  for (const int32_t code : kAxisMCodes) take('M', code);
+  if (change.created.empty()) {
+    for (const int32_t code : {350, 906, 913, 917}) take('M', code);
+  } else {
+    take('G', 31);
+    for (const int32_t code : kAxisMCodes) take('M', code);
+  }
   std::sort(ids.begin(), ids.end());
   for (const NodeId i : ids) {
     const Node n = cx.graph.nodes[i];
@@ -245,6 +264,12 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
     }
     if (!is_axis_command(*k.c)) continue;
     const bool settings = k.is('M', 350) || (k.c->fraction < 0 && is_current_code(k.c->number));
+    if (change.created.empty()) {  // no axis values to judge: the settings of the remapped letters
+      if (settings && !n.maybe)
+        for (char L : change.remapped)
+          if (k.pf->find(*k.c, L)) pending[L].push_back({i, k});
+      continue;
+    }
     for (const Param& p : k.pf->params(*k.c)) {
       const char L = p.letter;
       if (is_axis_value(*k.pf, *k.c, p) && !at.axis(L) && mk.pf->find(*mk.c, L)) {
@@ -253,13 +278,12 @@ inline std::vector<Dependent> dependents(const NodeContext& cx, NodeId m, const 
         if (!(k.c->letter == 'G' && L == 'C') && !(override_line && !mk.node.maybe) &&
             !tools::runs_again(cx.graph, n, m, cx.segment().end))
           out.push_back({i, L, Loss::Created, {}});
-      } else if (settings && !n.maybe && (L == 'E' || at.axis(L)) && k.pf->find(*k.c, L).is(p)) {
+      } else if (settings && !n.maybe && change.remapped.find(L) != std::string::npos && k.pf->find(*k.c, L).is(p)) {
         pending[L].push_back({i, k});
       }
     }
   }
   for (auto& [L, list] : pending) {
-    if (!mk.pf->find(*mk.c, L)) continue;
     const DriveMap::Entry* e = L == 'E' ? nullptr : at.axis(L);
     if (L != 'E' && (!e || e->maybe)) continue;
     for (auto& [i, k] : list) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -74,6 +75,37 @@ NodeId each_code_node(const NodeContext& cx, NodeId begin, NodeId end, char lett
   }
   return cx.graph.nodes.find_if(begin, end,
                                 [&](NodeId id, const Node& n) { return n.kind == NodeKind::Command && visit(id, n); });
+}
+
+/// Calls f(id, command) for each command node in [begin, end) whose code is `letter` with one of `numbers` (no
+/// fraction), in node order, until it returns true; returns that node, or kNoNode. Like each_code_node, it visits
+/// only the nodes of those codes.
+template <class F>
+NodeId each_code_node(const NodeContext& cx, NodeId begin, NodeId end, char letter, std::initializer_list<int> numbers,
+                      F f) {
+  std::vector<NodeId> ids;
+  for (const int number : numbers) {
+    const std::vector<NodeId>* all = cx.graph.code_nodes(cx.machine, letter, number);
+    if (!all) {  // no index for this number: one walk of the nodes
+      return cx.graph.nodes.find_if(begin, end, [&](NodeId id, const Node& n) {
+        if (n.kind != NodeKind::Command) return false;
+        const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+        const CommandTable::Code code = pf.commands.code(n.index);
+        return code.letter == letter && code.fraction < 0 &&
+               std::find(numbers.begin(), numbers.end(), code.number) != numbers.end() &&
+               f(id, NodeCommand{&pf, pf.commands[n.index], n});
+      });
+    }
+    ids.insert(ids.end(), std::lower_bound(all->begin(), all->end(), begin),
+               std::lower_bound(all->begin(), all->end(), end));
+  }
+  std::sort(ids.begin(), ids.end());
+  for (const NodeId id : ids) {
+    const Node n = cx.graph.nodes[id];
+    const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+    if (pf.commands.code(n.index).fraction < 0 && f(id, NodeCommand{&pf, pf.commands[n.index], n})) return id;
+  }
+  return kNoNode;
 }
 
 /// The first command node in (from, to) with code `letter` `number` (no fraction) for which `pred(command)` holds;

@@ -101,27 +101,26 @@ void check(const NodeContext& cx, Sink& out) {
   for (double v : t->active) hot = hot || v > 0;
   for (double v : t->standby) hot = hot || v > 0;
   // Retraction and mix ratios are not modelled as values: any M207/M567 for this tool since it was created.
-  // The temperatures' note goes to the last G10/M568 that set R or S for it.
+  // The temperatures' note goes to the last G10/M568 that set R or S for it. Only the nodes of those codes are visited
+  // (the code index): a walk of every node since the tool's creation cost a config of many tools dearly.
   NodeId temps_at = kNoNode;
-  cx.graph.nodes.find_if(t->created + 1, cx.id, [&](NodeId j, const Node& nd) {
-    if (nd.kind != NodeKind::Command || nd.maybe) return false;
-    const ParsedFile& opf = cx.machine.unit(nd.unit).parsed;
-    const CommandTable::Code code = opf.commands.code(nd.index);
-    if (code.fraction >= 0 ||
-        !(code.letter == 'G' ? code.number == 10
-                             : code.letter == 'M' && (code.number == 207 || code.number == 567 || code.number == 568)))
-      return false;
-    const Command& oc = opf.commands[nd.index];
+  auto visit = [&](NodeId j, const tools::NodeCommand& k) {
+    if (k.node.maybe) return false;
+    const ParsedFile& opf = *k.pf;
+    const Command& oc = *k.c;
     const bool m207 = oc.is('M', 207), temps = oc.is('G', 10) || oc.is('M', 568);
     auto op = get_int(opf, oc, 'P');
     if (temps) {
-      if (op.known() && op.value == n && (opf.find(oc, 'R') || opf.find(oc, 'S'))) temps_at = j;
+      if (op.known() && op.value == n && (opf.find(oc, 'R') || opf.find(oc, 'S')))
+        temps_at = temps_at == kNoNode ? j : std::max(temps_at, j);  // the last one: G10s and M568s are visited apart
       return false;
     }
     if (op.known() ? op.value != n : !(m207 && op.absent())) return false;
     keep(m207 ? "retraction settings" : "mix ratios", j);
     return false;
-  });
+  };
+  tools::each_code_node(cx, t->created + 1, cx.id, 'G', 10, visit);
+  tools::each_code_node(cx, t->created + 1, cx.id, 'M', {207, 567, 568}, visit);
   if (hot) keep("temperatures", temps_at != kNoNode ? temps_at : t->last_configured);
   if (lost.empty()) return;
   std::vector<std::string> names;

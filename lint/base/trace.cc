@@ -17,10 +17,11 @@ const bool kEnabled = std::getenv("RRFLINT_TRACE") != nullptr;
 
 double now_ms() { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(); }
 
-void Scope::report() const {
-  std::fprintf(stderr, "took  %8.2f ms  %s %.*s\n", now_ms() - start_, what_, static_cast<int>(detail_.size()),
-               detail_.data());
+void report_ms(const char* what, std::string_view detail, double ms) {
+  std::fprintf(stderr, "took  %8.2f ms  %s %.*s\n", ms, what, static_cast<int>(detail.size()), detail.data());
 }
+
+void Scope::report() const { report_ms(what_, detail_, now_ms() - start_); }
 
 namespace {
 // Resident memory now and at its peak so far, in MiB (Linux; 0 elsewhere): where in the pipeline the peak falls.

@@ -10,6 +10,8 @@ extern const bool kEnabled;  // RRFLINT_TRACE is set
 inline bool enabled() { return kEnabled; }
 double now_ms();  // since the program started
 void mark_slow(const char* what);
+/// Prints "took <ms> ms  <what> <detail>" (a time summed elsewhere, such as a node rule's over the forward pass).
+void report_ms(const char* what, std::string_view detail, double ms);
 inline void mark(const char* what) {
   if (kEnabled) mark_slow(what);
 }

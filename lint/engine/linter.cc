@@ -200,6 +200,14 @@ class ModelRun {
                           const std::vector<const Rule*>& node_rules) {
       if (runs == Runs::No || node_rules.empty()) return;
       const NodeContext nc{m, res.graph, res.target, options, s, id, runs, node};
+      if (trace::enabled()) {  // each node rule's total time, printed at the end of the pass
+        for (const Rule* r : node_rules) {
+          const double t0 = trace::now_ms();
+          r->check_node(nc, node_sink);
+          node_rule_ms[r] += trace::now_ms() - t0;
+        }
+        return;
+      }
       for (const Rule* r : node_rules) r->check_node(nc, node_sink);
     };
     for (const Segment& seg : res.graph.segments) {
@@ -233,6 +241,7 @@ class ModelRun {
         have_boot = true;
       }
     }
+    for (const auto& [r, ms] : node_rule_ms) trace::report_ms("node rule", r->meta.name, ms);
     trace::mark("forward pass");
   }
 
@@ -250,6 +259,7 @@ class ModelRun {
   std::optional<ModelBuilder> mb;
   MachineState boot_end;
   bool have_boot = false;
+  std::map<const Rule*, double> node_rule_ms;  // with RRFLINT_TRACE only
 };
 
 // The rules that look at the whole machine once the forward pass is done.
