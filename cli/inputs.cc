@@ -277,14 +277,18 @@ struct Planner {
 
   // `-`: standard input, as --stdin-filename places it.
   void add_stdin() {
-    // Read in blocks: a character at a time through std::cin took half a second for 30 MB.
-    std::string bytes;
+    // Redirected from a large file: mapped, as a large file named on the command line is (no copy).
+    std::optional<TextBuffer> mapped = map_standard_input();
+    // Otherwise read in blocks: a character at a time through std::cin took half a second for 30 MB.
+    std::string read;
     // Redirected from a file: its size is known, so the string does not grow (and copy) on the way.
-    if (struct stat st; ::fstat(0, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
-      bytes.reserve(static_cast<size_t>(st.st_size));
-    std::vector<char> block(size_t{1} << 16);
-    for (size_t n; (n = std::fread(block.data(), 1, block.size(), stdin)) > 0;) bytes.append(block.data(), n);
-    if (std::ferror(stdin)) {
+    if (struct stat st; !mapped && ::fstat(0, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
+      read.reserve(static_cast<size_t>(st.st_size));
+    std::vector<char> block(mapped ? 0 : size_t{1} << 16);
+    if (!mapped)
+      for (size_t n; (n = std::fread(block.data(), 1, block.size(), stdin)) > 0;) read.append(block.data(), n);
+    TextBuffer bytes = mapped ? std::move(*mapped) : TextBuffer(std::move(read));
+    if (!mapped && std::ferror(stdin)) {
       // A read error (standard input a folder, a closed descriptor): not linted as if it were empty.
       error(fmt::format("-: cannot read standard input: {}", std::strerror(errno)));
       io_error = true;
@@ -295,7 +299,7 @@ struct Planner {
     auto lone_stdin = [&](bool excluded) {
       Job j;
       j.standalone = name;
-      j.stdin_bytes = TextBuffer(std::move(bytes));
+      j.stdin_bytes = std::move(bytes);
       j.title = name.string();
       j.excluded = excluded;
       j.explicit_path = !excluded;
@@ -311,7 +315,7 @@ struct Planner {
       if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
         Job& j = job_for_card(*at.card, po.stdin_filename);
         j.only.insert(to_lower(*at.sd));
-        j.stdin_bytes = TextBuffer(std::move(bytes));
+        j.stdin_bytes = std::move(bytes);
         j.stdin_sd_path = *at.sd;
         j.explicit_path = true;
         return;

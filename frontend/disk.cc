@@ -202,6 +202,22 @@ std::optional<std::string> read_open(int fd, const struct stat& st, std::string*
 
 void map_large_files(bool on) { map_large = on; }
 
+std::optional<TextBuffer> map_standard_input() {
+#if defined(__linux__)
+  struct stat st;
+  // Only at offset 0: a descriptor that was read from before (`(head -c 9; rrflint check -) < FILE`) goes on from
+  // where it is, and a mapping starts at a page.
+  if (!map_large || ::fstat(0, &st) != 0 || !S_ISREG(st.st_mode) || static_cast<size_t>(st.st_size) < kMapFrom ||
+      ::lseek(0, 0, SEEK_CUR) != 0)
+    return std::nullopt;
+  if (const char* p = map_bytes(0, static_cast<size_t>(st.st_size))) {
+    trace::mark("mapped standard input");
+    return TextBuffer::mapped(p, static_cast<size_t>(st.st_size));
+  }
+#endif
+  return std::nullopt;
+}
+
 std::optional<std::string> read_file(const std::string& path, std::string* error) {
   struct stat st;
   const int fd = open_readable(path, st, error);

@@ -90,6 +90,10 @@ std::optional<std::string> read_file(const std::string& path, std::string* error
 std::optional<TextBuffer> read_text(const std::string& path, std::string* error);
 void map_large_files(bool on);
 
+/// Standard input redirected from a large regular file (`rrflint check - < FILE`) and not read yet, mapped as
+/// read_text maps a file (same conditions); nullopt otherwise (a pipe, a terminal, a small file): then read it.
+std::optional<TextBuffer> map_standard_input();
+
 /// Whether read_file would open `path` (not a folder, readable); `error` set as read_file sets it when not. Reads
 /// nothing, so a large file costs no more than a small one.
 bool probe_file(const std::string& path, std::string* error);

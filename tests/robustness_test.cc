@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -342,6 +343,38 @@ TEST_CASE("matrix: standard input that cannot be read is an I/O error, not an em
   std::stringstream ss;
   ss << f.rdbuf();
   CHECK(contains(ss.str(), "cannot read standard input"));
+}
+
+TEST_CASE("matrix: standard input redirected from a large file is mapped, and read on from where it stands",
+          "[cli][matrix]") {
+  // 4 MB and more, at offset 0: mapped (frontend/disk.cc map_standard_input). After another program read part of
+  // the descriptor: read from there on, never mapped from the file's start.
+  TempTree t;
+  std::string body = kGood;
+  while (body.size() < (size_t{5} << 20)) body += "; padding: a comment line that RRF skips\n";
+  body += "M9999\n";
+  t.write("body.g", body);
+  t.write("head.g", "M9998\n" + body);  // a 6-byte line first, read away below
+  auto lint = [&](const std::string& input) {
+    const std::string out = (t.root() / "out.txt").string();
+    const std::string cmd =
+        "cd " + shell_quote(t.root().string()) + " && " + input + " > " + shell_quote(out) + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream f(out);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str());
+  };
+  const std::string check = shell_quote(RRFLINT_BINARY) + " check --format concise --stdin-filename sys/config.g -";
+  const auto mapped = lint(check + " < body.g");
+  const auto piped = lint("cat body.g | " + check);
+  CHECK(mapped.first == 1);
+  CHECK(contains(mapped.second, "config.g:" + std::to_string(std::count(body.begin(), body.end(), '\n')) + ":1"));
+  CHECK(contains(mapped.second, "M9999"));
+  CHECK(mapped == piped);
+  const auto after_head = lint("{ head -c 6 >/dev/null; " + check + "; } < head.g");
+  CHECK(after_head == mapped);
+  CHECK(!contains(after_head.second, "M9998"));
 }
 
 TEST_CASE(
