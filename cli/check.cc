@@ -95,8 +95,9 @@ void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Total
       t.io_error = true;
     }
   }
-  for (const auto& [sd, as_named] : job.named)
-    if (!linted.count(sd) && std::none_of(m.problems().begin(), m.problems().end(),
+  for (const auto& [named_sd, as_named] : job.named)
+    if (const std::string& sd = named_sd;  // a structured binding: clang 14 lets no lambda capture one
+        !linted.count(sd) && std::none_of(m.problems().begin(), m.problems().end(),
                                           [&](const LoadProblem& p) { return to_lower(p.sd_path) == sd; })) {
       error(
           fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files, and macros without an extension "

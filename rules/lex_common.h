@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "lint/base/strings.h"
 #include "lint/syntax/parser.h"
 
 namespace rrflint::lex {
@@ -29,7 +30,7 @@ inline bool contains(std::string_view t, Span s, char c) { return span_has(t, s,
 /// `s`, cut to `n` characters with "…" for a message.
 inline std::string clip(std::string_view s, size_t n = 40) {
   if (s.size() <= n) return std::string(s);
-  return std::string(s.substr(0, n)) + "…";
+  return std::string(utf8_prefix(s, n)) + "…";
 }
 
 /// The blanks and tabs that indent a line.

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lint/base/strings.h"
 #include "lint/boot/commands.h"
 #include "lint/engine/rule.h"
 
@@ -217,7 +218,7 @@ inline std::string quote(const ParsedFile& pf, const Command& c) {
   if (t.size() <= 40) return fmt::format("'{}'", t);
   size_t cut = t.rfind(' ', 36);
   if (cut == std::string_view::npos || cut < pf.text(c.word).size()) cut = 36;
-  return fmt::format("'{} …'", t.substr(0, cut));
+  return fmt::format("'{} …'", utf8_prefix(t, cut));
 }
 
 /// Is there a G10, M563 or M568 for tool n (or an unknown tool) between the command at `cx` and node `to`? Then

@@ -4,7 +4,7 @@
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET…]     default: 60 seconds, every target
 #
-# TARGET: parse, lint, card, fix, render, lsp. Each run has a timeout per input (hang detection), a memory limit
+# TARGET: parse, lint, card, fix, render, lsp, session. Each run has a timeout per input (hang detection), a memory limit
 # and leak detection on. Seeds come from tests/fuzz/make_seeds.py (fixtures/, and ../shared/corpus read-only when
 # present); new inputs go to a scratch corpus under the build folder, kept from run to run; crash, hang, leak and
 # out-of-memory inputs go to its artifacts/ folder. Exits non-zero when any run found something (the row names
@@ -18,7 +18,7 @@ cd "$(dirname "$0")/.."
 root=$(pwd)
 seconds=${1:-60}
 shift || true
-all=(parse lint card fix render lsp)
+all=(parse lint card fix render lsp session)
 targets=("$@")
 [[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
 for t in "${targets[@]}"; do
@@ -46,7 +46,7 @@ rm -rf "$work/seeds"
 python3 tests/fuzz/make_seeds.py ${FUZZ_SEEDS:+--max "$FUZZ_SEEDS"} "$work/seeds"
 mkdir -p "$work/artifacts" "$work/logs"
 
-declare -A max_len=([parse]=8192 [lint]=4096 [card]=8192 [fix]=4096 [render]=4096 [lsp]=8192)
+declare -A max_len=([parse]=8192 [lint]=4096 [card]=8192 [fix]=4096 [render]=4096 [lsp]=8192 [session]=8192)
 if [[ -n "$results" && ! -f "$results" ]]; then
   echo "fuzz: $results is missing (it starts with the table header)" >&2
   exit 2

@@ -278,6 +278,26 @@ def test_fix_all(s, card):
     check(again["result"] == [], f"no fix-all without a safe fix: {again}")
 
 
+def test_fix_at_end_of_file(s, card):
+    """An edit that ends after the file's last line ending ends at the start of the line after it: a character
+    past the end of a line is taken back to the line's end, which would leave the last CR in place."""
+    init(s, {"firmware": "3.5"})
+    path = os.path.join(card, "macros", "cr-only.g")
+    text = "M83\rG1 X10\rM400\r"
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w", encoding="utf-8", newline="") as f:
+        f.write(text)
+    s.notify("textDocument/didOpen", {"textDocument": {"uri": uri_of(path), "languageId": "rrf-gcode",
+                                                       "version": 1, "text": text}})
+    p = s.diagnostics(uri_of(path))
+    check("RRF107" in codes(p), f"the CR-only file is reported: {codes(p)}")
+    r = s.request("textDocument/codeAction", action_request(0, uri_of(path), ["source.fixAll.rrflint"])["params"])
+    edits = r["result"][0]["edit"]["changes"][uri_of(path)]
+    check(edits[-1]["range"]["end"] == {"line": 3, "character": 0}, f"the edit ends at (3, 0): {edits}")
+    fixed = apply_edits(text, edits)
+    check(fixed == "M83\nG1 X10\nM400\n", f"every CR replaced: {fixed!r}")
+
+
 def test_tags(s, card):
     init(s)
     config = config_of(card)

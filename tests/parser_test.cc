@@ -20,6 +20,7 @@
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
 
+#include "lint/base/strings.h"
 #include "lint/syntax/parser.h"
 #include "tests/param_check.h"
 
@@ -305,6 +306,19 @@ TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[
   CHECK(errors("Echo \"x\"").size() == 1);
   CHECK(errors("G") == std::vector<std::string>{"0: expected a number after 'G'"});
   CHECK(one("ifx") == "bad");
+  // The line is quoted up to 40 bytes, never up to part of a character (a message must stay valid UTF-8: the
+  // language server's JSON cannot carry a cut one). Byte 40 here is the second byte of an "é".
+  CHECK(errors("Q" + std::string(18, '-') +
+               "\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9") ==
+        std::vector<std::string>{
+            "0: Bad command: "
+            "'Q------------------\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9': a "
+            "line must start with G, M "
+            "or T"});
+  CHECK(utf8_prefix("ab\xc3\xa9", 3) == "ab");
+  CHECK(utf8_prefix("ab\xc3\xa9", 4) == "ab\xc3\xa9");
+  CHECK(utf8_prefix("\xf0\x9f\x98\x80x", 2) == "");
+  CHECK(utf8_prefix("abc", 10) == "abc");
 }
 
 // Several commands on one line (firmware-behaviour.md#several-commands-on-one-line).

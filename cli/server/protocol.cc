@@ -1,6 +1,7 @@
 // The language server's wire: framing, parsing, writing (protocol.h).
 #include "cli/server/protocol.h"
 #include "frontend/platform.h"
+#include "lint/base/strings.h"
 
 #include <fmt/format.h>
 
@@ -54,7 +55,7 @@ void take_header(std::string_view line, bool long_line, Headers& h) {
     size_t n = 0;
     if (!parse_length(value, n))
       return bad(fmt::format("Content-Length '{}' is not a length of at most {} bytes",
-                             std::string(value.substr(0, 40)), kMaxBody));
+                             std::string(utf8_prefix(value, 40)), kMaxBody));
     h.has_length = true;
     h.length = n;
   }

@@ -9,4 +9,10 @@ std::string to_lower(std::string_view s) {
   return r;
 }
 
+std::string_view utf8_prefix(std::string_view s, size_t n) {
+  if (n >= s.size()) return s;
+  while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;  // s[n] continues a character
+  return s.substr(0, n);
+}
+
 }  // namespace rrflint

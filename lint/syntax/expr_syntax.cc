@@ -1,6 +1,7 @@
 // RRF's expression grammar, checked without evaluating anything (ExprSyntax): in {…} parameters and in meta
 // commands (LineParser::check_meta_syntax), and the messages about it.
 
+#include "lint/base/strings.h"
 #include "lint/syntax/parse_internal.h"
 
 namespace rrflint {
@@ -192,13 +193,15 @@ class ExprSyntax {
 }  // namespace
 
 // `s`, cut to 40 characters for a message.
-std::string clip(std::string_view s) { return s.size() <= 40 ? std::string(s) : fmt::format("{}…", s.substr(0, 40)); }
+std::string clip(std::string_view s) {
+  return s.size() <= 40 ? std::string(s) : fmt::format("{}…", utf8_prefix(s, 40));
+}
 
 // "'…'" or "the end": where an expression error is, for a message.
 std::string error_place(std::string_view t, uint32_t at, uint32_t e) {
   if (at >= e) return "at the end";
   std::string_view rest = t.substr(at, e - at);
-  if (rest.size() > 16) return fmt::format("at '{}…'", rest.substr(0, 16));
+  if (rest.size() > 16) return fmt::format("at '{}…'", utf8_prefix(rest, 16));
   return fmt::format("at '{}'", rest);
 }
 

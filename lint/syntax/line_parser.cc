@@ -1,5 +1,6 @@
 // The full line parser: logical lines, meta commands and their expressions, commands, and blocks.
 
+#include "lint/base/strings.h"
 #include "lint/syntax/parse_internal.h"
 
 namespace rrflint {
@@ -293,7 +294,7 @@ void LineParser::parse_commands(Line& line, uint32_t b, uint32_t e) {
       }
       if (first) {
         std::string_view text = t.substr(b, e - b);
-        if (text.size() > 40) text = text.substr(0, 40);
+        text = utf8_prefix(text, 40);
         bool kw_case = false;
         for (const auto& mw : kMetaWords) {
           const std::string_view w = mw.word;

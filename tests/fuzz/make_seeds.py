@@ -8,7 +8,7 @@ whole card) and, read-only, the real configs of CORPUS (default ../shared/corpus
 be a scratch folder (scripts/fuzz.sh uses one under its build folder): the seeds are never written into the
 repository or the corpus. Formats: `parse` is an option byte and one file; `lint` an option byte, config.g and
 optionally 0xFF and /sys/m.g; `card`, `fix` and `render` the card format of tests/fuzz/fuzz_input.h; `lsp` LSP
-messages, framed and broken. --max N keeps N seeds per target, spread evenly over them (a short smoke run,
+messages, framed and broken; `session` the operations of tests/fuzz/fuzz_session.cc on a card's files. --max N keeps N seeds per target, spread evenly over them (a short smoke run,
 which would spend its time on the seeds alone).
 """
 import json
@@ -111,6 +111,29 @@ def lsp_seeds(texts):
     yield "cut-body", b"Content-Length: 40\r\n\r\n{\"id\":"
 
 
+def session_seeds(all_cards):
+    """Sessions of tests/fuzz/fuzz_session.cc: open a card's config.g (document 0) and one macro (document 2), lint,
+    ask for hover, completion, signature help and code actions, edit a range, lint again, close."""
+
+    def text(data):
+        data = data[:2047]
+        return bytes([len(data) // 8, len(data) % 8]) + data
+
+    for name, files in all_cards:
+        config = dict(files).get("/sys/config.g", b"")
+        macro = next((b for p, b in files if p != "/sys/config.g"), b"M98 P\"config.g\"\n")
+        # Each operation: its code, the document, its operands (a position: line, character; a range: two
+        # positions and a byte that keeps the second one when it is a multiple of 4).
+        ops = bytes([0, 0]) + text(config) + bytes([0, 2]) + text(macro)  # open both
+        ops += bytes([3, 0])  # lint
+        ops += bytes([4, 0, 1, 2, 5, 0, 2, 1, 6, 0, 3, 6])  # hover, completion, signature help
+        ops += bytes([7, 0, 1, 0, 0, 4, 0, 0])  # quickfixes for lines 0 to 4
+        ops += bytes([2, 0, 0, 1, 0, 1, 0, 1]) + text(b'M563 P0 S"x"\n')  # insert a line at line 1
+        ops += bytes([7, 0, 3, 0, 0, 0, 0, 1])  # fix all
+        ops += bytes([10, 0, 9, 9, 0, 8, 2, 3, 0])  # settings, save, close, lint
+        yield name, sel("session" + name) + ops
+
+
 def main():
     args = sys.argv[1:]
     most = None
@@ -123,7 +146,7 @@ def main():
     all_cards = list(cards())
     if corpus.is_dir():
         all_cards += list(corpus_cards(corpus))
-    seeds = {t: {} for t in ("parse", "lint", "card", "fix", "render", "lsp")}
+    seeds = {t: {} for t in ("parse", "lint", "card", "fix", "render", "lsp", "session")}
     for name, files in all_cards:
         for path, data in files:
             seeds["parse"][name + path.replace("/", "-")] = sel(name + path) + data
@@ -136,6 +159,8 @@ def main():
     small = [(n, dict(f).get("/sys/config.g", b"")) for n, f in all_cards if n.startswith(("seed", "fixture"))]
     for name, data in lsp_seeds(small):
         seeds["lsp"][name] = sel(name) + data
+    for name, data in session_seeds(all_cards):
+        seeds["session"][name] = data
     for target, items in seeds.items():
         if most is not None and len(items) > most:
             names = sorted(items)
