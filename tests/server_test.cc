@@ -7,6 +7,7 @@
 
 #include "cli/server/protocol.h"
 #include "cli/server/text.h"
+#include "lint/base/source.h"
 
 using namespace rrflint::server;
 
@@ -94,6 +95,14 @@ TEST_CASE("server: UTF-16 lengths and offsets", "[server]") {
   CHECK(utf16_length(line) == 5);
   CHECK(utf16_length("\xFF\xC3") == 2);      // invalid bytes count one each
   CHECK(utf16_length("\xED\xA0\x80") == 3);  // an encoded surrogate is invalid UTF-8: three bytes, three units
+  // Inside a character: its start, or rounded up (a range's end) the next one. A range cut inside the emoji
+  // once came out backwards, (0, 3) to (0, 2) for a 3-byte cut, as the partial bytes counted one unit each.
+  CHECK(utf16_before(line, 2, false) == 1);
+  CHECK(utf16_before(line, 2, true) == 2);
+  CHECK(utf16_before(line, 6, false) == 2);
+  CHECK(utf16_before(line, 6, true) == 4);
+  CHECK(utf16_before(line, 7, false) == 4);
+  CHECK(utf16_before(line, 99, false) == 5);
   CHECK(offset_of(line, {0, 2}) == 3);
   CHECK(offset_of(line, {0, 3}) == 7);  // inside the surrogate pair: after the emoji
   CHECK(offset_of(line, {0, 4}) == 7);
@@ -105,6 +114,24 @@ TEST_CASE("server: UTF-16 lengths and offsets", "[server]") {
   CHECK(offset_of(text, {3, 2}) == 12);
   CHECK(offset_of(text, {0, 9}) == 2);  // not into the CRLF
   CHECK(offset_of(text, {9, 0}) == text.size());
+}
+
+TEST_CASE("server: a range that starts or ends inside a character covers it, in order", "[server]") {
+  rrflint::SourceManager sm;
+  const rrflint::SourceFile& f = sm.add("c.g", "/sys/c.g", "G1 ; \xE2\x82\xAC\xF0\x9F\x98\x80\r\nX");  // euro, emoji
+  auto check = [&](uint32_t b, uint32_t e, uint32_t start, uint32_t end) {
+    const json r = range_json(f, rrflint::Span{b, e});
+    CHECK(r["start"]["character"] == start);
+    CHECK(r["end"]["character"] == end);
+    // The command line's columns, in code points, 1-based: in order too.
+    CHECK(f.position(b).column <= f.position(e, true).column);
+  };
+  check(6, 7, 5, 6);    // both inside the euro sign: the sign
+  check(7, 10, 5, 8);   // from inside the euro sign to inside the emoji
+  check(5, 13, 5, 8);   // whole characters stay as they are
+  check(12, 13, 8, 8);  // from the CR to between it and the LF: the line's end
+  CHECK(f.position(7).column == 6);
+  CHECK(f.position(7, true).column == 7);
 }
 
 TEST_CASE("server: incremental changes", "[server]") {

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "cli/server/model_at.h"
+#include "cli/server/text.h"
 #include "cli/server/workspace.h"
 #include "lint/engine/suppress.h"
 
@@ -48,6 +49,15 @@ std::optional<json> fix_all(const Snapshot& s, FileId file, const std::string& u
   while (tail < before.size() - head && tail < after.size() - head &&
          before[before.size() - 1 - tail] == after[after.size() - 1 - tail])
     ++tail;
+  // Ends where a position names the same byte, so that the edit replaces exactly the bytes that changed: not
+  // inside a UTF-8 character, nor between a CR and its LF (range_json would move either end over a byte that the
+  // new text then lacks, or holds twice).
+  auto clean = [&](size_t i) {
+    return i == 0 || i >= before.size() ||
+           ((static_cast<unsigned char>(before[i]) & 0xC0) != 0x80 && !(before[i - 1] == '\r' && before[i] == '\n'));
+  };
+  while (!clean(head)) --head;
+  while (!clean(before.size() - tail)) --tail;
   const Span changed{static_cast<uint32_t>(head), static_cast<uint32_t>(before.size() - tail)};
   json edit{{"range", range_json(f, changed)}, {"newText", after.substr(head, after.size() - tail - head)}};
   return json{{"title", fmt::format("fix all safe rrflint findings ({})", n)},

@@ -29,13 +29,36 @@ size_t utf8_step(std::string_view s, size_t i, uint32_t& units) {
   return len;
 }
 
-uint32_t utf16_length(std::string_view s) {
+uint32_t utf16_length(std::string_view s) { return utf16_before(s, s.size(), false); }
+
+uint32_t utf16_before(std::string_view s, size_t off, bool round_up) {
   uint32_t n = 0, units = 0;
-  for (size_t i = 0; i < s.size();) {
-    i += utf8_step(s, i, units);
+  for (size_t i = 0; i < off && i < s.size();) {
+    const size_t len = utf8_step(s, i, units);
+    if (i + len > off && !round_up) break;  // `off` falls inside this character: its start
+    i += len;
     n += units;
   }
   return n;
+}
+
+nlohmann::json range_json(const SourceFile& f, Span s) {
+  // A range that starts or ends inside a character covers it, so that it never comes out backwards.
+  auto pos = [&](uint32_t off, bool round_up) {
+    off = std::min(off, f.size());
+    const uint32_t line = f.line_of(off);
+    const Span text = f.line_span(line);
+    // Past the line's text: after its whole terminator is the next line's start (at the end of a file that ends
+    // with one, a line the line index does not hold: "X\n" ends at (1, 0), never (0, 2), which an editor would
+    // take back to (0, 1) and so leave the newline out of an edit); between a CR and its LF, the end of the line.
+    if (off > text.end) {
+      if (off >= text.end + f.terminator(line).size()) return nlohmann::json{{"line", line + 1}, {"character", 0}};
+      off = text.end;
+    }
+    const uint32_t ch = utf16_before(f.slice(text), off - text.begin, round_up);
+    return nlohmann::json{{"line", line}, {"character", ch}};
+  };
+  return {{"start", pos(s.begin, false)}, {"end", pos(std::max(s.begin, s.end), true)}};
 }
 
 size_t offset_of(std::string_view text, Position p) {

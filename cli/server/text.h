@@ -11,6 +11,10 @@
 #include <string>
 #include <string_view>
 
+#include <nlohmann/json.hpp>
+
+#include "lint/base/source.h"
+
 namespace rrflint::server {
 
 struct Position {
@@ -21,6 +25,11 @@ struct Position {
 size_t utf8_step(std::string_view s, size_t i, uint32_t& units);
 /// UTF-16 units in `s`.
 uint32_t utf16_length(std::string_view s);
+/// UTF-16 units of `s` before byte `off`; a character `off` falls inside is counted only with `round_up` (the end
+/// of a range, which then covers it).
+uint32_t utf16_before(std::string_view s, size_t off, bool round_up);
+/// An LSP range for a span of a file, in UTF-16 units.
+nlohmann::json range_json(const SourceFile& f, Span s);
 /// The byte offset of an LSP position in `text` (clamped to the line's end, or to the text's end past the last line).
 size_t offset_of(std::string_view text, Position p);
 /// Replaces the range [start, end) of `text` (LSP positions) with `replacement`; an end before the start is taken

@@ -33,25 +33,6 @@ int severity_of(Severity s) {
 
 }  // namespace
 
-json range_json(const SourceFile& f, Span s) {
-  auto pos = [&](uint32_t off) {
-    off = std::min(off, f.size());
-    const uint32_t line = f.line_of(off);
-    const Span text = f.line_span(line);
-    // Past the line's text: after its whole terminator is the next line's start (at the end of a file that ends
-    // with one, a line the line index does not hold: "X\n" ends at (1, 0), never (0, 2), which an editor would
-    // take back to (0, 1) and so leave the newline out of an edit); between a CR and its LF, the end of the line.
-    if (off > text.end) {
-      if (off >= text.end + f.terminator(line).size()) return json{{"line", line + 1}, {"character", 0}};
-      off = text.end;
-    }
-    const uint32_t start = text.begin;
-    const uint32_t ch = off > start ? utf16_length(f.text().substr(start, off - start)) : 0;
-    return json{{"line", line}, {"character", ch}};
-  };
-  return {{"start", pos(s.begin)}, {"end", pos(std::max(s.begin, s.end))}};
-}
-
 json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::string& docs_base,
                      const std::function<std::optional<std::string>(FileId)>& uri_of) {
   json j{{"range", range_json(sm.get(d.loc.file), d.loc.span)},

@@ -61,8 +61,6 @@ struct Snapshot {
   std::map<FileId, std::optional<std::string>> uris;  // filled by the lint for every file with a finding or note
 };
 
-/// An LSP range for a span of a file, in UTF-16 units.
-json range_json(const SourceFile& f, Span s);
 /// One finding as an LSP Diagnostic; notes in files with a URI become its related information.
 json diagnostic_json(const SourceManager& sm, const Diagnostic& d, const std::string& docs_base,
                      const std::function<std::optional<std::string>(FileId)>& uri_of);

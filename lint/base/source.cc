@@ -125,32 +125,39 @@ std::string_view SourceFile::terminator(uint32_t line0) const {
   return std::string_view(bytes_).substr(e, next - e);
 }
 
-LineCol SourceFile::position(uint32_t offset) const {
+LineCol SourceFile::position(uint32_t offset, bool round_up) const {
   offset = std::min(offset, size());
   uint32_t line0 = line_of(offset);
   uint32_t start = line_starts_[line0];
   const uint32_t line_e = line_end(line0);
   uint32_t end = std::min(offset, line_e);
-  uint32_t col = count_code_points(std::string_view(bytes_).substr(start, end - start)) + 1;
+  uint32_t col = code_points_before(std::string_view(bytes_).substr(start, line_e - start), end - start, round_up) + 1;
   if (offset > line_e) col += 1;  // inside the terminator: one past the line end
   return LineCol{line0 + 1, col};
 }
 
-uint32_t count_code_points(std::string_view s) {
+namespace {
+// The length of the code point that starts at s[i]: 1 for an ASCII byte or a byte that starts no whole sequence.
+size_t code_point_length(std::string_view s, size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  size_t len = 1;
+  if (c >= 0xC2 && c <= 0xDF) len = 2;
+  else if (c >= 0xE0 && c <= 0xEF) len = 3;
+  else if (c >= 0xF0 && c <= 0xF4) len = 4;
+  if (len == 1 || i + len > s.size()) return 1;
+  for (size_t k = 1; k < len; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 1;
+  return len;
+}
+}  // namespace
+
+uint32_t count_code_points(std::string_view s) { return code_points_before(s, s.size(), false); }
+
+uint32_t code_points_before(std::string_view s, size_t off, bool round_up) {
   uint32_t count = 0;
-  size_t i = 0;
-  const size_t n = s.size();
-  while (i < n) {
-    unsigned char c = static_cast<unsigned char>(s[i]);
-    size_t len = 1;
-    if (c >= 0xC2 && c <= 0xDF) len = 2;
-    else if (c >= 0xE0 && c <= 0xEF) len = 3;
-    else if (c >= 0xF0 && c <= 0xF4) len = 4;
-    if (len > 1) {
-      bool ok = i + len <= n;
-      for (size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
-      if (!ok) len = 1;
-    }
+  for (size_t i = 0; i < off && i < s.size();) {
+    const size_t len = code_point_length(s, i);
+    if (i + len > off && !round_up) break;  // `off` falls inside this code point: its start
     i += len;
     ++count;
   }

@@ -105,7 +105,10 @@ class SourceFile {
   uint32_t line_count() const { return static_cast<uint32_t>(line_starts_.size()); }
   Span line_span(uint32_t line0) const;
   uint32_t line_of(uint32_t offset) const;  // 0-based
-  LineCol position(uint32_t offset) const;
+  /// The 1-based line and column (in code points) of a byte offset. An offset inside a code point is that code
+  /// point's column, or with `round_up` the next one (as the end of a range, so that the range covers it): a range
+  /// that starts or ends inside a character never comes out backwards.
+  LineCol position(uint32_t offset, bool round_up = false) const;
   const LineEndings& endings() const { return endings_; }
   /// Whether the buffer holds a NUL byte / a DEL (0x7f) byte: found by the line index's scan, so that the parser
   /// needs no pass of its own over the text.
@@ -144,6 +147,8 @@ inline Span SourceFile::line_span(uint32_t line0) const { return Span{line_start
 
 /// Counts code points in `s` the way columns are reported (invalid bytes count one each).
 uint32_t count_code_points(std::string_view s);
+/// The code points of `s` before byte `off`; one that `off` falls inside is counted only with `round_up`.
+uint32_t code_points_before(std::string_view s, size_t off, bool round_up);
 
 /// Owns every SourceFile of one run. FileIds index into it.
 class SourceManager {

@@ -24,7 +24,7 @@ Counts count(const std::vector<Diagnostic>& diags) {
 Range range_of(const SourceManager& sm, const Location& loc) {
   if (loc.file == kNoFile) return {};
   const SourceFile& f = sm.get(loc.file);
-  return Range{f.position(loc.span.begin), f.position(loc.span.end)};
+  return Range{f.position(loc.span.begin), f.position(std::max(loc.span.begin, loc.span.end), true)};
 }
 
 std::string sanitize(std::string_view s) {

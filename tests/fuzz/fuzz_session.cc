@@ -71,12 +71,13 @@ size_t utf16_length(std::string_view s) {
   return n;
 }
 
-void check_range(const json& r) {
+// Is the LSP range in order (start before end, nothing negative)?
+bool in_order(const json& r) {
   const json& a = r.at("start");
   const json& b = r.at("end");
   const auto al = a.at("line").get<int64_t>(), ac = a.at("character").get<int64_t>();
   const auto bl = b.at("line").get<int64_t>(), bc = b.at("character").get<int64_t>();
-  if (al < 0 || ac < 0 || bl < 0 || bc < 0 || al > bl || (al == bl && ac > bc)) fail("a range out of order", r);
+  return al >= 0 && ac >= 0 && bl >= 0 && bc >= 0 && (al < bl || (al == bl && ac <= bc));
 }
 
 // Every message must print as JSON (dump throws on invalid UTF-8), and diagnostics' ranges must be in order.
@@ -87,7 +88,8 @@ void check_message(const json& m) {
     fail("a message that is not valid UTF-8 (a text cut inside a character?)", m);
   }
   if (m.value("method", "") == "textDocument/publishDiagnostics")
-    for (const json& d : m.at("params").at("diagnostics")) check_range(d.at("range"));
+    for (const json& d : m.at("params").at("diagnostics"))
+      if (!in_order(d.at("range"))) fail("a published range out of order", d);
 }
 
 // A code action's edits name open documents and lie inside them (a line past the end is the end of the file).
@@ -113,7 +115,7 @@ void check_actions(const Workspace& ws, const json& actions) {
       lines.push_back(t.substr(b));
       for (const json& ed : edits) {
         const json& r = ed.at("range");
-        check_range(r);
+        if (!in_order(r)) fail("an edit's range out of order", json{{"edit", ed}, {"text", *text}});
         for (const char* end : {"start", "end"}) {
           const auto l = r.at(end).at("line").get<size_t>(), c = r.at(end).at("character").get<size_t>();
           if (l > lines.size() || (l < lines.size() && c > utf16_length(lines[l])))
