@@ -80,16 +80,27 @@ bool in_order(const json& r) {
   return al >= 0 && ac >= 0 && bl >= 0 && bc >= 0 && (al < bl || (al == bl && ac <= bc));
 }
 
-// Every message must print as JSON (dump throws on invalid UTF-8), and diagnostics' ranges must be in order.
+// Every message must print as JSON (dump throws on invalid UTF-8), and diagnostics' ranges, with those of their
+// related information, must be in order.
 void check_message(const json& m) {
   try {
     (void)m.dump();
   } catch (const json::type_error&) {
     fail("a message that is not valid UTF-8 (a text cut inside a character?)", m);
   }
-  if (m.value("method", "") == "textDocument/publishDiagnostics")
-    for (const json& d : m.at("params").at("diagnostics"))
-      if (!in_order(d.at("range"))) fail("a published range out of order", d);
+  if (m.value("method", "") != "textDocument/publishDiagnostics") return;
+  for (const json& d : m.at("params").at("diagnostics")) {
+    if (!in_order(d.at("range"))) fail("a published range out of order", d);
+    if (auto r = d.find("relatedInformation"); r != d.end())
+      for (const json& n : *r)
+        if (!in_order(n.at("location").at("range"))) fail("a related information's range out of order", d);
+  }
+}
+
+// A hover's range, when it has one, is in order.
+void check_hover(const json& h) {
+  if (h.is_object())
+    if (auto r = h.find("range"); r != h.end() && !in_order(*r)) fail("a hover's range out of order", h);
 }
 
 // A code action's edits name open documents and lie inside them (a line past the end is the end of the file).
@@ -166,10 +177,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       case 6: {
         const json params = {{"textDocument", td}, {"position", in.position()}};
         request([&] {
-          (void)(op % 12 == 4   ? hover(ws, caps, params)
-                 : op % 12 == 5 ? completion(ws, caps, params)
-                                : signature_help(ws, caps, params))
-              .dump();
+          const json answer = op % 12 == 4   ? hover(ws, caps, params)
+                              : op % 12 == 5 ? completion(ws, caps, params)
+                                             : signature_help(ws, caps, params);
+          (void)answer.dump();
+          if (op % 12 == 4) check_hover(answer);
         });
         break;
       }
