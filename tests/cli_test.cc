@@ -112,6 +112,30 @@ TEST_CASE("text: a note in another file has that file's name and snippet; carets
         "https://example.org/rrflint/rules/tool-select-runs-macros-at-boot.md\n");
 }
 
+TEST_CASE("text: a span that starts or ends inside a character marks the whole character", "[cli]") {
+  // RRF102 marks a long line from its 256th byte, which can fall inside a character: here 2 bytes into the
+  // 4-byte emoji. The snippet once showed the emoji as four U+FFFD, and its columns came out backwards.
+  SourceManager sm;
+  const SourceFile& f = sm.add("m.g", "/macros/m.g", "M117 \"ab\xF0\x9F\x98\x80 x\"\n");
+  Diagnostic d;
+  d.code = "RRF102";
+  d.name = "line-too-long";
+  d.severity = Severity::Error;
+  d.loc = Location{f.id(), Span{10, 11}};  // both ends inside the emoji
+  d.message = "long";
+  RenderOptions o;
+  o.files_checked = 1;
+  std::ostringstream os;
+  render_text(os, sm, {d}, o);
+  CHECK(contains(os.str(),
+                 "m.g:1:9: error RRF102 line-too-long: long\n"
+                 " 1 | M117 \"ab\xF0\x9F\x98\x80 x\"\n"
+                 "   |         ^\n"));
+  const Range r = range_of(sm, d.loc);
+  CHECK(r.start.column == 9);
+  CHECK(r.end.column == 10);
+}
+
 TEST_CASE("cli: colours follow --color, FORCE_COLOR, NO_COLOR and TERM=dumb", "[cli]") {
   TempTree t;
   t.write("p/sys/config.g", kConfig);

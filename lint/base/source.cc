@@ -151,6 +151,21 @@ size_t code_point_length(std::string_view s, size_t i) {
 }
 }  // namespace
 
+size_t code_point_floor(std::string_view s, size_t off) {
+  size_t i = 0;
+  while (i < off && i < s.size()) {
+    const size_t next = i + code_point_length(s, i);
+    if (next > off) return i;
+    i = next;
+  }
+  return std::min(off, s.size());
+}
+
+size_t code_point_ceil(std::string_view s, size_t off) {
+  const size_t f = code_point_floor(s, off);
+  return f == off || f >= s.size() ? std::min(off, s.size()) : f + code_point_length(s, f);
+}
+
 uint32_t count_code_points(std::string_view s) { return code_points_before(s, s.size(), false); }
 
 uint32_t code_points_before(std::string_view s, size_t off, bool round_up) {

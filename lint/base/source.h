@@ -149,6 +149,9 @@ inline Span SourceFile::line_span(uint32_t line0) const { return Span{line_start
 uint32_t count_code_points(std::string_view s);
 /// The code points of `s` before byte `off`; one that `off` falls inside is counted only with `round_up`.
 uint32_t code_points_before(std::string_view s, size_t off, bool round_up);
+/// The start of the code point of `s` that byte `off` falls inside (`off` itself at a boundary), and its end.
+size_t code_point_floor(std::string_view s, size_t off);
+size_t code_point_ceil(std::string_view s, size_t off);
 
 /// Owns every SourceFile of one run. FileIds index into it.
 class SourceManager {

@@ -37,8 +37,12 @@ void snippet(std::ostream& os, const SourceManager& sm, const Location& loc, cha
   const Span ls = f.line_span(line0);
   // Display text: tabs become one blank each so the carets line up; other controls become U+FFFD.
   std::string_view raw = f.slice(ls);
-  const uint32_t b = std::min(loc.span.begin, ls.end) - ls.begin;
+  uint32_t b = std::min(loc.span.begin, ls.end) - ls.begin;
   uint32_t e = std::min(std::max(loc.span.end, loc.span.begin), ls.end) - ls.begin;
+  // A span that starts or ends inside a character marks the whole character (its bytes shown apart would each be
+  // a U+FFFD), as its columns do (SourceFile::position).
+  b = static_cast<uint32_t>(code_point_floor(raw, b));
+  e = static_cast<uint32_t>(code_point_ceil(raw, e));
   // Window very long lines around the span.
   uint32_t wb = 0, we = static_cast<uint32_t>(raw.size());
   if (raw.size() > 200) {
