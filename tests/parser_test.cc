@@ -732,6 +732,44 @@ TEST_CASE("parser: a file parsed in parts on several threads parses as on one", 
         test::parse_dump(parse_text(text, cnc).pf));
 }
 
+TEST_CASE("parser: parts guess their mode from mode lines anywhere, and a wrong guess is parsed again", "[parser]") {
+  // Mode words the guess sees (at a line's start, after blanks or a line number, lowercase) and those it cannot
+  // tell from text (later in a line, in a comment, inside a CNC ( ) comment, with a fraction or a longer number):
+  // wherever the parts are cut, the parse is the one a single thread makes.
+  const std::vector<std::string> kinds = {
+      "M453",
+      "G1 X1 (M451) Y2",
+      "  N7 m452 ; laser",
+      "G90 M453",
+      "; M451 in a comment",
+      "M451.1",
+      "M4531 X1",
+      "G1 X2 Y3",
+      "X5 Y6",
+      "M451",
+      "\tM453\t; tabbed",
+      "N12M452",
+      "G1 X1 (a comment in CNC mode) Y2 E0.1",
+  };
+  std::string text;
+  for (int i = 0; i < 3000; ++i) text += kinds[(i * 5 + i / 17) % kinds.size()] + (i % 9 == 0 ? "\r\n" : "\n");
+  // And a long run with no mode line at all after the last M453: every part of it starts in CNC mode.
+  text += "M453\n";
+  for (int i = 0; i < 2000; ++i) text += "G1 X" + std::to_string(i) + " (cnc) Y1\n";
+  for (const ParseOptions& start : {ParseOptions{}, ParseOptions{.cnc_mode = true}, ParseOptions{.laser_mode = true}}) {
+    const std::string serial = test::parse_dump(parse_text(text, start).pf);
+    for (unsigned threads : {2u, 3u, 8u}) {
+      for (size_t part : {size_t{3}, size_t{97}, size_t{4096}, text.size() / 5}) {
+        INFO("threads " << threads << ", parts of " << part << " bytes, cnc " << start.cnc_mode);
+        ParseOptions o = start;
+        o.threads = threads;
+        o.part_bytes = part;
+        CHECK(test::parse_dump(parse_text(text, o).pf) == serial);
+      }
+    }
+  }
+}
+
 TEST_CASE("source: the line index finds every line start, whatever the alignment", "[parser]") {
   // Lines of every length from 0 to 40 bytes, so that LFs fall on every position of a 16-byte block.
   for (size_t shift = 0; shift < 17; ++shift) {
