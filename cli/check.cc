@@ -390,6 +390,7 @@ void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const C
   ro.fixed = t.fixed;
   ro.machines = std::move(t.machines);
   ro.unsafe_fixes_enabled = co.unsafe_fixes;
+  ro.threads = co_threads(co);
   ro.cwd = fs::current_path(ec);
   ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);
   if (!co.output_file.empty()) ro.color = co.color == "always";

@@ -349,3 +349,35 @@ TEST_CASE("json-lines: one object per line, the same objects as json", "[json]")
   CHECK(json::parse(with_base.str())["diagnostics"][0]["url"] == rule_url(kWebDocs, "g10-tool-before-definition"));
   CHECK(doc["diagnostics"][0]["notes"][0]["end_column"] == 6);
 }
+
+TEST_CASE("json, json-lines: a large report written in pieces on several threads is the same bytes", "[json]") {
+  Sample s;
+  RenderOptions o;
+  o.rules = &builtin_rules();
+  // Enough findings for several rounds of pieces, and a count that leaves a short last piece.
+  std::vector<Diagnostic> many;
+  for (size_t i = 0; i < 23'123; ++i) many.push_back(s.diags[i % s.diags.size()]);
+  for (const std::vector<Diagnostic>* diags : {&many, &s.diags}) {
+    std::string one_json, one_lines;
+    for (unsigned threads : {1u, 2u, 3u, 8u}) {
+      INFO("threads " << threads << ", findings " << diags->size());
+      o.threads = threads;
+      std::ostringstream js, jl;
+      render_json(js, s.sm, *diags, o);
+      render_json_lines(jl, s.sm, *diags, o);
+      if (threads == 1) {
+        one_json = js.str();
+        one_lines = jl.str();
+        CHECK(json::parse(one_json)["diagnostics"].size() == diags->size());
+        continue;
+      }
+      CHECK(js.str() == one_json);
+      CHECK(jl.str() == one_lines);
+    }
+  }
+  // No findings: an empty array, whatever the threads.
+  o.threads = 4;
+  std::ostringstream none;
+  render_json(none, s.sm, {}, o);
+  CHECK(none.str().starts_with("{\n  \"diagnostics\": [],\n"));
+}

@@ -4,7 +4,10 @@
 //
 // Written as a stream (json_writer.h), members in sorted order as the nlohmann tree printed them before; the text
 // is flushed to the stream every 64 KiB, so memory does not grow with the number of findings.
+#include <algorithm>
 #include <map>
+
+#include "lint/base/parallel.h"
 
 #include "lint/render/json_writer.h"
 #include "lint/render/render.h"
@@ -67,6 +70,45 @@ void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d,
   w.end_object();
 }
 
+void write_diagnostics_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                            const RenderOptions& o, size_t depth, bool first) {
+  // A piece: diagnostics [b, e) into `out`, flushed to `os` every 64 KiB when it goes there directly.
+  auto piece = [&](size_t b, size_t e, std::string& out, std::ostream* flush_to) {
+    JsonWriter w(out, depth == 0 ? -1 : 2);
+    JsonPaths paths(sm);
+    for (size_t i = b; i < e; ++i) {
+      if (depth == 0) w.resume(0, true);
+      else w.resume(depth, first && i == 0);
+      write_diagnostic_json(w, paths, diags[i], o.docs_base);
+      if (depth == 0) out += '\n';
+      if (flush_to && out.size() >= (64u << 10)) {
+        *flush_to << out;
+        out.clear();
+      }
+    }
+  };
+  constexpr size_t kPiece = 2048;  // findings: about 1.5 MB of json
+  const unsigned threads = std::max(1u, o.threads);
+  if (threads == 1 || diags.size() < 2 * kPiece) {
+    std::string out;
+    piece(0, diags.size(), out, &os);
+    os << out;
+    return;
+  }
+  // Rounds of two pieces per thread, so that memory stays a few pieces whatever the number of findings.
+  const size_t round = size_t{2} * threads;
+  std::vector<std::string> outs(round);
+  for (size_t at = 0; at < diags.size(); at += round * kPiece) {
+    const size_t n = std::min(round, (diags.size() - at + kPiece - 1) / kPiece);
+    run_tasks(n, threads, [&](size_t k) {
+      outs[k].clear();
+      const size_t b = at + k * kPiece;
+      piece(b, std::min(diags.size(), b + kPiece), outs[k], nullptr);
+    });
+    for (size_t k = 0; k < n; ++k) os << outs[k];
+  }
+}
+
 namespace {
 
 void write_machines(JsonWriter& w, const SourceManager& sm, const std::vector<MachineTarget>& machines) {
@@ -107,17 +149,13 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
                  const RenderOptions& o) {
   std::string buf;
   JsonWriter w(buf, 2);
-  JsonPaths paths(sm);
   w.begin_object();
   w.key("diagnostics");
   w.begin_array();
-  for (const Diagnostic& d : diags) {
-    write_diagnostic_json(w, paths, d, o.docs_base);
-    if (buf.size() >= (64u << 10)) {
-      os << buf;
-      buf.clear();
-    }
-  }
+  os << buf;
+  buf.clear();
+  write_diagnostics_json(os, sm, diags, o, 2, true);
+  w.resume(2, diags.empty());
   w.end_array();
   w.key("machines");
   write_machines(w, sm, o.machines);

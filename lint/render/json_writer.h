@@ -32,6 +32,12 @@ class JsonWriter {
   void value(int n) { value(int64_t{n}); }
   void value(uint32_t n) { value(uint64_t{n}); }
   void null();
+  /// Goes on inside `depth` containers that another writer opened, the innermost an array: `first`, whether the
+  /// next element is its first. (A piece of a long array written apart from the rest: write_diagnostics_json.)
+  void resume(size_t depth, bool first) {
+    empty_.assign(depth, false);
+    if (depth > 0) empty_.back() = first;
+  }
   /// key(k) then value(v).
   template <typename T>
   void member(std::string_view k, const T& v) {

@@ -45,6 +45,9 @@ struct RenderOptions {
   size_t files_checked = 0;
   std::vector<MachineTarget> machines;  // json: each machine's target, its source and evidence
   size_t fixed = 0;                     // findings fixed by --fix before this report (text summary)
+  /// json, json-lines: a report of many findings is written in pieces on up to this many threads (the bytes are
+  /// the same for any number).
+  unsigned threads = 1;
   // SARIF: artifact URIs are relative to `uri_base` (the git top-level, else the working directory); display
   // paths are relative to `cwd`. Both absolute; empty means the current directory.
   std::filesystem::path uri_base;
@@ -89,6 +92,11 @@ class JsonPaths {
 class JsonWriter;
 /// One diagnostic as the object `json` and `json-lines` print; its "url" is rule_url(docs_base, name).
 void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d, std::string_view docs_base);
+/// Every diagnostic through write_diagnostic_json to `os`, in order, by writers `depth` containers deep (json: 2,
+/// inside its "diagnostics" array, `first`: none written there yet; json-lines: 0, a line each). Thousands of
+/// findings are written in pieces on up to o.threads threads, a few pieces at a time, each to a buffer of its own.
+void write_diagnostics_json(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                            const RenderOptions& o, size_t depth, bool first);
 
 /// Text with invalid UTF-8 replaced by U+FFFD and control characters escaped, safe for terminals and JSON.
 std::string sanitize(std::string_view s);
