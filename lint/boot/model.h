@@ -290,6 +290,19 @@ enum class Runs : uint8_t {
 };
 
 /// The forward pass. `step` applies one graph node to the state.
+namespace detail {
+// The M codes the model reads (ModelBuilder::changes_state), a flag per number below 1000.
+struct ModelMCodes {
+  bool read[1000] = {};
+  constexpr ModelMCodes() {
+    for (int n : {42,  92,  98,  106, 140, 141, 143, 207, 280, 301, 307, 308, 350, 451, 452, 453,
+                  558, 563, 567, 568, 570, 574, 581, 584, 585, 591, 665, 667, 669, 671, 950})
+      read[n] = true;
+  }
+};
+inline constexpr ModelMCodes kModelMCodes{};
+}  // namespace detail
+
 class ModelBuilder {
  public:
   ModelBuilder(const Machine& m, const Graph& g, Version fw, Board board);
@@ -305,9 +318,12 @@ class ModelBuilder {
   /// decide() for the command nodes [begin, end) of one run (NodeTable::Stretch; `n` is the first): they run alike.
   void decide_commands(const MachineState& s, NodeId begin, NodeId end, const Node& n);
   /// Can a command of this code change the state? Most cannot (moves, settings): step() does nothing for them,
-  /// and the forward pass need not call it.
+  /// and the forward pass need not call it. The M codes are the `case` labels of interpret_command() and the
+  /// switches it calls (lint/boot/model_*.cc); tests/command_docs_test.cc checks that the two lists agree.
   static bool changes_state(const CommandTable::Code& c) {
-    return (c.letter == 'M' && c.fraction < 0) || c.is('G', 10) || c.is('G', 31);
+    if (c.letter == 'M')
+      return c.fraction < 0 && c.number >= 0 && c.number < 1000 && detail::kModelMCodes.read[c.number];
+    return c.is('G', 10) || c.is('G', 31);
   }
 
  private:
