@@ -56,14 +56,19 @@ TEST_CASE("parallel: tasks that wait for first() and batches inside tasks finish
 }
 
 TEST_CASE("parallel: the first exception is rethrown and the other tasks stop", "[parallel]") {
-  std::atomic<int> ran{0};
-  CHECK_THROWS_WITH(run_tasks(10'000, 4,
-                              [&](size_t i) {
-                                ++ran;
-                                if (i == 3) throw std::runtime_error("task 3");
-                              }),
-                    "task 3");
-  CHECK(ran < 10'000);
+  for (unsigned threads : {1u, 4u}) {
+    INFO(threads << " threads");
+    std::atomic<int> ran{0};
+    CHECK_THROWS_WITH(run_tasks(10'000, threads,
+                                [&](size_t i) {
+                                  ++ran;
+                                  if (i == 3) throw std::runtime_error("task 3");
+                                }),
+                      "task 3");
+    // On one thread no task runs after the one that threw. Helpers stop as soon as they see it, but how soon is
+    // up to the scheduler: on several threads only the exception is checked.
+    if (threads == 1) CHECK(ran == 4);
+  }
   CHECK_THROWS_WITH(run_tasks(
                         10, 3, [] { throw std::runtime_error("first"); }, [](size_t) {}),
                     "first");

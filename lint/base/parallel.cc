@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <exception>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -52,9 +53,15 @@ class Pool {
   void open(Batch& b) {
     std::lock_guard lock(m_);
     open_.push_back(&b);
-    for (size_t free = idle_; free < b.seats && threads_ < kMaxThreads; ++free) {
+    while (idle_ < b.seats && threads_ < kMaxThreads) {
+      try {
+        std::thread([this] { work(); }).detach();
+      } catch (const std::system_error&) {  // no thread to be had: the caller takes the tasks
+        break;
+      }
       ++threads_;
-      std::thread([this] { work(); }).detach();
+      ++idle_;  // counted as idle from its start (under the lock it waits for), so that a batch opened before it
+                // runs starts no other
     }
     wake_.notify_all();
   }
@@ -76,10 +83,9 @@ class Pool {
   // there is no fixed size: a bound only against a runaway.
   static constexpr size_t kMaxThreads = 256;
 
-  void work() {
+  void work() {  // idle_ counts this thread already
     std::unique_lock lock(m_);
     for (;;) {
-      ++idle_;
       wake_.wait(lock, [&] { return !open_.empty(); });
       --idle_;
       Batch& b = *open_.front();
@@ -89,6 +95,7 @@ class Pool {
       b.drain();
       lock.lock();
       if (--b.active == 0) b.all_left.notify_all();
+      ++idle_;
     }
   }
 
