@@ -74,14 +74,13 @@ safe: it keeps the block as its indentation shows it.
 constexpr Version kFixedIn{3, 6, 0, 1, 3};  // 3.6.0-beta.3
 
 struct Block {
-  uint32_t indent;  // the indent of the block's lines
-  MetaKind opener;  // if/elif/else/while, or None for a plain block (extra indentation)
-  Line head;        // the line that opened it
+  uint32_t indent;       // the indent of the block's lines
+  MetaKind opener;       // if/elif/else/while, or None for a plain block (extra indentation)
+  uint32_t head;         // the line that opened it
+  uint32_t head_indent;  // and its indent
 };
 
-bool is_code(const Line& l) {
-  return l.kind == LineKind::Commands || l.kind == LineKind::Meta || l.kind == LineKind::Bad;
-}
+bool is_code(LineKind k) { return k == LineKind::Commands || k == LineKind::Meta || k == LineKind::Bad; }
 
 bool conditional(MetaKind k) {
   return k == MetaKind::If || k == MetaKind::Elif || k == MetaKind::Else || k == MetaKind::While;
@@ -96,38 +95,46 @@ void check(const FileContext& cx, Sink& out) {
   const Severity warning = g->at == HazardAt::Target ? Severity::Warning : Severity::Info;
   const ParsedFile& pf = cx.parsed();
   const LineTable& lines = pf.lines;
-  std::vector<Block> open;   // blocks with indent > 0, innermost last, as the lines' indentation shows them
-  std::optional<Line> prev;  // the previous code line
+  std::vector<Block> open;  // blocks with indent > 0, innermost last, as the lines' indentation shows them
+  // The previous code line. Lines are read from their records field by field: most lines are code lines, and
+  // decoding each whole (its comment) took a third of the rule's time.
+  constexpr uint32_t kNone = UINT32_MAX;
+  uint32_t prev = kNone, prev_indent = 0;
+  MetaKind prev_meta = MetaKind::None;
   for (size_t i = 0; i < lines.size(); ++i) {
-    const Line& line = lines[i];
-    if (is_code(line)) {
-      while (!open.empty() && line.indent < open.back().indent) open.pop_back();
-      if (prev && line.indent > prev->indent && (open.empty() || line.indent > open.back().indent))
-        open.push_back(Block{line.indent, prev->meta, *prev});
-      prev = line;
+    const LineKind kind = lines.kind(i);
+    if (is_code(kind)) {
+      const uint32_t indent = lines.indent(i);
+      while (!open.empty() && indent < open.back().indent) open.pop_back();
+      if (prev != kNone && indent > prev_indent && (open.empty() || indent > open.back().indent))
+        open.push_back(Block{indent, prev_meta, prev, prev_indent});
+      prev = static_cast<uint32_t>(i);
+      prev_indent = indent;
+      prev_meta = lines.meta(i);
       continue;
     }
-    if (line.kind != LineKind::Comment || open.empty() || !prev) continue;
+    if (kind != LineKind::Comment || open.empty() || prev == kNone) continue;
     // A run of column-0 comments (blank lines may sit between them): the first one closes the blocks.
+    const Line line = lines[i];
     std::vector<Span> run{line.span};
     size_t j = i + 1;
-    for (; j < lines.size() && !is_code(lines[j]); ++j)
-      if (lines[j].kind == LineKind::Comment) run.push_back(lines[j].span);
+    for (; j < lines.size() && !is_code(lines.kind(j)); ++j)
+      if (lines.kind(j) == LineKind::Comment) run.push_back(lines.span(j));
     i = j - 1;
     if (j >= lines.size()) continue;
-    const Line& next = lines[j];
+    const Line next = lines[j];
 
     Fix fix = Fix::safe("indent the comment like the block");
-    const std::string indent(pf.text(lex::indentation(pf, *prev)));
+    const std::string indent(pf.text(lex::indentation(pf, lines[prev])));
     for (const Span& c : run) fix.edits.push_back(Edit::insert(cx.at(Span{c.begin, c.begin}), indent));
     const Span at{line.span.begin, line.span.begin + 1};
     const uint32_t next_no = cx.source().position(next.span.begin).line;
 
-    if ((next.meta == MetaKind::Else || next.meta == MetaKind::Elif) && prev->indent > next.indent) {
+    if ((next.meta == MetaKind::Else || next.meta == MetaKind::Elif) && prev_indent > next.indent) {
       // The block the else/elif continues is the one opened at the else's own level.
       const Block* head = nullptr;
       for (const Block& b : open)
-        if (b.head.indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
+        if (b.head_indent == next.indent && (b.opener == MetaKind::If || b.opener == MetaKind::Elif)) head = &b;
       if (!head) continue;  // an else/elif with no if is a syntax error (RRF100)
       Report r =
           out.report(kMeta, g->severity, cx.at(at),
@@ -135,7 +142,7 @@ void check(const FileContext& cx, Sink& out) {
                                  "with \"'{}' did not follow 'if'\" when the condition is false, which aborts the "
                                  "rest of the file",
                                  on, meta_keyword(next.meta), next_no, meta_keyword(next.meta)));
-      r.note(cx.at(head->head.code), fmt::format("the '{}' opens here", meta_keyword(head->opener)));
+      r.note(cx.at(lines.code(head->head)), fmt::format("the '{}' opens here", meta_keyword(head->opener)));
       gate::explain(r, *g, cx.target, cx.at(at), kVersions);
       r.fix(std::move(fix));
       continue;
@@ -152,7 +159,7 @@ void check(const FileContext& cx, Sink& out) {
                                meta_keyword(escaped->opener), on, next_no,
                                loop ? "run once after the loop instead of in every pass"
                                     : "run even when the condition is false"));
-    r.note(cx.at(escaped->head.code), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
+    r.note(cx.at(lines.code(escaped->head)), fmt::format("the '{}' block opens here", meta_keyword(escaped->opener)));
     gate::explain(r, *g, cx.target, cx.at(at), kVersions);
     r.fix(std::move(fix));
   }

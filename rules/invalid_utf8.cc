@@ -1,6 +1,9 @@
 // RRF119 invalid-utf8: bytes that are not UTF-8 (a Latin-1 '°', a Windows-1252 quote), once per file.
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <cstring>
+
 #include "lint/engine/rule.h"
 
 namespace rrflint {
@@ -80,6 +83,11 @@ void check(const FileContext& cx, Sink& out) {
   for (size_t p = 0; p < t.size();) {
     if (static_cast<unsigned char>(t[p]) < 0x80) {
       ++p;
+      // Runs of ASCII eight bytes at a time (the file is mostly ASCII; a byte at a time took 70 ms for 100 MB).
+      for (uint64_t w; p + 8 <= t.size(); p += 8) {
+        std::memcpy(&w, t.data() + p, 8);
+        if (w & 0x8080808080808080ull) break;
+      }
       continue;
     }
     const size_t n = utf8_length(t, p);

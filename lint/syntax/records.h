@@ -29,6 +29,7 @@ struct ParseOptions;
 struct Command;
 struct Line;
 enum class LineKind : uint8_t;
+enum class MetaKind : uint8_t;
 ParsedFile parse(const SourceFile&, const ParseOptions&);
 
 namespace detail {
@@ -226,6 +227,9 @@ class LineTable {
   /// Line i's kind and code, without decoding the line (a rule skips most lines on these).
   LineKind kind(size_t i) const { return static_cast<LineKind>(recs_[i].kind_meta & 7); }
   Span code(size_t i) const { return Span{recs_[i].code_begin, recs_[i].code_end}; }
+  /// Line i's indentation and meta keyword, likewise.
+  uint32_t indent(size_t i) const { return recs_[i].indent < 65535 ? recs_[i].indent : long_indent(i); }
+  MetaKind meta(size_t i) const { return static_cast<MetaKind>((recs_[i].kind_meta >> 3) & 15); }
   bool has_comment(size_t i) const { return recs_[i].kind_meta & 0x80; }
   /// Line i's span (without its terminator) and stored length, likewise.
   Span span(size_t i) const { return spans_.empty() ? source_->line_span(static_cast<uint32_t>(i)) : spans_[i]; }
