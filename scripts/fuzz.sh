@@ -66,7 +66,11 @@ for t in "${targets[@]}"; do
   elapsed=$(($(date +%s) - start))
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   cov=$(sed -n 's/.*[ \t]cov: \([0-9]*\).*/\1/p' "$log" | tail -1)
-  artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -1)
+  # A slow-unit file is libFuzzer's note of an input that took over 10 s (-report_slow_units), not a failure: a
+  # hang is a timeout (-timeout), a crash or sanitizer report ends the run. (A machine that stopped or starved the
+  # fuzzer makes slow units of quick inputs.) They are counted in the row, not as findings.
+  artifact=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | grep -v '/[a-z]*-slow-unit-' | tail -1 || true)
+  slow=$(grep -c 'Test unit written to .*-slow-unit-' "$log" || true)
   findings=0
   if [[ $status -ne 0 || -n "$artifact" ]]; then
     findings=${artifact:-"exit $status, see $log"}
@@ -79,6 +83,7 @@ for t in "${targets[@]}"; do
     failed=1
     continue
   fi
+  [[ "$findings" == 0 && "${slow:-0}" -gt 0 ]] && findings="0 ($slow slow-unit notes, slowest $(sed -n 's/^stat::slowest_unit_time_sec: *//p' "$log" | tail -1) s)"
   echo "fuzz: $t: ${execs:-?} executions in ${elapsed} s, cov ${cov:-?}, findings: $findings"
   if [[ -n "$results" ]]; then
     printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "${execs:-?}" "$elapsed" \
