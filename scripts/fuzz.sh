@@ -83,7 +83,7 @@ for t in "${targets[@]}"; do
     failed=1
     continue
   fi
-  [[ "$findings" == 0 && "${slow:-0}" -gt 0 ]] && findings="0 ($slow slow-unit notes, slowest $(sed -n 's/^stat::slowest_unit_time_sec: *//p' "$log" | tail -1) s)"
+  [[ "$findings" == 0 && "${slow:-0}" -gt 0 ]] && findings="0 (slow-unit notes: $slow, the slowest $(sed -n 's/^stat::slowest_unit_time_sec: *//p' "$log" | tail -1) s)"
   echo "fuzz: $t: ${execs:-?} executions in ${elapsed} s, cov ${cov:-?}, findings: $findings"
   if [[ -n "$results" ]]; then
     printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "${execs:-?}" "$elapsed" \
