@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "rules/edit_parses.h"
 #include "rules/lex_common.h"
 
 namespace rrflint {
@@ -54,7 +55,8 @@ M98 P"macros/leds.g"
 ## Fix safety
 Removing a blank between the letter and its quoted string is safe. Adding quotes around unquoted text is
 unsafe: rrflint takes the text up to the next blank (for `M98`, the rest of the line), which may not be all
-that was meant.
+that was meant. Neither fix is offered when the line, fixed, would not parse: a string that the line never
+closes (`M98 P "a.g ; note`), or a control byte in text that would be quoted.
 
 ## References
 - rrflint: [Strings](../firmware-behaviour.md#strings)
@@ -95,16 +97,18 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   if (b >= end) return;
   if (t[b] == '"' || t[b] == '{') {
     if (b == after) return;
-    Fix fix = Fix::safe(fmt::format("remove the blank after '{}'", letter), Edit::remove(cx.at(Span{after, b})));
-    out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
+    Report r = out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
                fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
                            t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
                            quotes_needed ? fmt::format("RRF looks for the {} right after the letter and fails with "
                                                        "'expected a string expression'",
                                                        t[b] == '"' ? "quote" : "'{'")
                                          : std::string("RRF takes the blank and what follows as the file name, "
-                                                       "quotes included, and finds no such file")))
-        .fix(std::move(fix));
+                                                       "quotes included, and finds no such file")));
+    // Not when the string or expression never closes on the line: without the blank it would be read as one (the
+    // blank made M98 take the rest of the line as a name), a new syntax error.
+    if (tools::edit_parses(pf, c.line, Span{after, b}, "", c.cnc))
+      r.fix(Fix::safe(fmt::format("remove the blank after '{}'", letter), Edit::remove(cx.at(Span{after, b}))));
     return;
   }
   if (!quotes_needed) return;
@@ -127,10 +131,11 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
                                           "expression')");
   Report r = out.report(kMeta, cx.at(Span{p.span.begin, e}),
                         fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why));
-  // A control byte ends a quoted string (RRF rejects it there): quoting such text would make a syntax error.
-  if (std::none_of(text.begin(), text.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x20; }))
+  // Not when the quoted text would not parse: a control byte ends a quoted string (RRF rejects it there).
+  const std::string quoted = fmt::format("\"{}\"", text);
+  if (tools::edit_parses(pf, c.line, Span{after, e}, quoted, c.cnc))
     r.fix(Fix::unsafe(fmt::format("quote '{}'", text),
-                      Edit::replace(cx.at(Span{after, e}), fmt::format("\"{}\"", text))));
+                      Edit::replace(cx.at(Span{after, e}), quoted)));
 }
 
 // Is the target certainly one that needs quotes for this command? An unquoted M98 file name is itself a sign of
