@@ -50,9 +50,12 @@ M568 P0 R150 S210
 ## Fix safety
 The fix moves `R` and `S` to a new `M568 P<n> R… S…` line right after the `G10`, with the same indentation and
 line ending, and keeps the offsets on the `G10`; a `G10` that held only `P` and temperatures becomes the
-`M568`. Both commands run the same firmware code (`SetOrReportOffsets`), so the effect is unchanged: the fix is
-safe. It is offered only when the `G10` is alone on its line, and for a `G10` without `P` only from RRF 3.4
-(3.3's `M568` requires `P`).
+`M568`. From RRF 3.3 both commands run the same firmware code (`SetOrReportOffsets`), so the effect is
+unchanged: the fix is safe when the files rule out older firmware (`--firmware`, `.rrflint.toml`, or a command
+that needs RRF 3.3 or later). When the target is 3.3 or later only because it is the newest release or a version
+comment says so, the fix is unsafe: on RRF 3.2 and earlier `M568` does nothing, and the tool would lose its
+temperatures. It is offered only when the `G10` is alone on its line, and for a `G10` without `P` only from
+RRF 3.4 (3.3's `M568` requires `P`).
 
 ## References
 - rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
@@ -79,12 +82,24 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
       others = true;
     }
   }
-  if (!P && cx.target.version < kRrf3_4) return std::nullopt;
+  const Version needs = P ? kRrf3_3 : kRrf3_4;  // 3.3's M568 requires P
+  if (cx.target.version < needs) return std::nullopt;
+  // Safe only when the files rule out the versions whose M568 does nothing (or lacks the P-less form): a target of
+  // 3.3 or later that is only the newest release, or a version comment, may be a 3.2 machine, where the G10 works
+  // and the M568 would not.
+  const Applicability a = cx.target.floor >= needs ? Applicability::Safe : Applicability::Unsafe;
   std::string m568 = "M568";
   for (const Param* p : {P, R, S})
     if (p) m568 += " " + std::string(pf.text(p->span));
-  if (!others) return Fix::safe(fmt::format("replace with '{}'", m568), Edit::replace(cx.at(c.span), m568));
-  Fix fix = Fix::safe(fmt::format("move the temperatures to '{}'", m568));
+  const std::string why =
+      a == Applicability::Safe ? std::string() : fmt::format(" if the firmware is RRF {} or later", floor_text(needs));
+  if (!others) {
+    Fix fix = Fix::safe(fmt::format("replace with '{}'{}", m568, why), Edit::replace(cx.at(c.span), m568));
+    fix.applicability = a;
+    return fix;
+  }
+  Fix fix = Fix::safe(fmt::format("move the temperatures to '{}'{}", m568, why));
+  fix.applicability = a;
   // Delete each of R and S with the blanks before it.
   for (const Param* p : {R, S}) {
     if (!p) continue;

@@ -97,14 +97,15 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   if (b >= end) return;
   if (t[b] == '"' || t[b] == '{') {
     if (b == after) return;
-    Report r = out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
-               fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
-                           t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
-                           quotes_needed ? fmt::format("RRF looks for the {} right after the letter and fails with "
-                                                       "'expected a string expression'",
-                                                       t[b] == '"' ? "quote" : "'{'")
-                                         : std::string("RRF takes the blank and what follows as the file name, "
-                                                       "quotes included, and finds no such file")));
+    Report r =
+        out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
+                   fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
+                               t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
+                               quotes_needed ? fmt::format("RRF looks for the {} right after the letter and fails with "
+                                                           "'expected a string expression'",
+                                                           t[b] == '"' ? "quote" : "'{'")
+                                             : std::string("RRF takes the blank and what follows as the file name, "
+                                                           "quotes included, and finds no such file")));
     // Not when the string or expression never closes on the line: without the blank it would be read as one (the
     // blank made M98 take the rest of the line as a name), a new syntax error.
     if (tools::edit_parses(pf, c.line, Span{after, b}, "", c.cnc))
@@ -134,8 +135,7 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
   // Not when the quoted text would not parse: a control byte ends a quoted string (RRF rejects it there).
   const std::string quoted = fmt::format("\"{}\"", text);
   if (tools::edit_parses(pf, c.line, Span{after, e}, quoted, c.cnc))
-    r.fix(Fix::unsafe(fmt::format("quote '{}'", text),
-                      Edit::replace(cx.at(Span{after, e}), quoted)));
+    r.fix(Fix::unsafe(fmt::format("quote '{}'", text), Edit::replace(cx.at(Span{after, e}), quoted)));
 }
 
 // Is the target certainly one that needs quotes for this command? An unquoted M98 file name is itself a sign of

@@ -1,6 +1,6 @@
 ; The card of tests/lsp_core_test.py. Its findings by default: RRF104 twice (both with a safe fix), RRF328
-; (M568 before 3.3 is not ruled out), RRF307 (the deprecated G10 temperature form, with a safe fix), RRF116 (X81
-; is ignored), RRF501 (new.g is not on the card until a test writes it).
+; (M568 before 3.3 is not ruled out), RRF307 (the deprecated G10 temperature form; its fix is safe once --firmware
+; rules out 3.2), RRF116 (X81 is ignored), RRF501 (new.g is not on the card until a test writes it).
 M584 X0 Y1 Z2 E3
 M308 S1 P"e0temp" Y"thermistor"
 M950 H1 C"e0heat" T1
