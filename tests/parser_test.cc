@@ -319,6 +319,15 @@ TEST_CASE("parser: a line that does not start with G, M, T is a Bad command", "[
   CHECK(utf8_prefix("ab\xc3\xa9", 4) == "ab\xc3\xa9");
   CHECK(utf8_prefix("\xf0\x9f\x98\x80x", 2) == "");
   CHECK(utf8_prefix("abc", 10) == "abc");
+  // An expression error found inside a character (RRF reads a character literal byte by byte: after the first byte
+  // of "é" it wants the closing quote) is quoted from the character's start (found by fuzz_session).
+  const std::vector<std::string> e = errors("if x == '\xc3\xa9'");
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].find("at '\xc3\xa9''") != std::string::npos);
+  CHECK(utf8_start("a\xf0\x9f\x98\x80", 4) == 1);
+  CHECK(utf8_start("a\xf0\x9f\x98\x80", 2) == 1);
+  CHECK(utf8_start("a\xf0\x9f\x98\x80", 1) == 1);
+  CHECK(utf8_start("\x80\x80", 1, 1) == 1);  // not before the floor
 }
 
 // Several commands on one line (firmware-behaviour.md#several-commands-on-one-line).

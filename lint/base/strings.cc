@@ -15,4 +15,9 @@ std::string_view utf8_prefix(std::string_view s, size_t n) {
   return s.substr(0, n);
 }
 
+size_t utf8_start(std::string_view s, size_t at, size_t floor) {
+  for (int k = 0; k < 3 && at > floor && at < s.size() && (static_cast<unsigned char>(s[at]) & 0xC0) == 0x80; ++k) --at;
+  return at;
+}
+
 }  // namespace rrflint

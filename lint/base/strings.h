@@ -13,4 +13,8 @@ std::string to_lower(std::string_view s);
 /// in part of a character (which JSON could not carry, and a terminal shows as garbage).
 std::string_view utf8_prefix(std::string_view s, size_t n);
 
+/// `at`, or the start of the UTF-8 character that byte `at` of `s` continues (at most 3 bytes back, never before
+/// `floor`): a text quoted from a byte position (where a parse stopped) never starts in part of a character.
+size_t utf8_start(std::string_view s, size_t at, size_t floor = 0);
+
 }  // namespace rrflint

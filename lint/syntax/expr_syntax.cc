@@ -200,6 +200,8 @@ std::string clip(std::string_view s) {
 // "'…'" or "the end": where an expression error is, for a message.
 std::string error_place(std::string_view t, uint32_t at, uint32_t e) {
   if (at >= e) return "at the end";
+  // A byte-wise scan may stop inside a character (after the first byte of `'é'`): quote from the character's start.
+  at = static_cast<uint32_t>(utf8_start(t, at));
   std::string_view rest = t.substr(at, e - at);
   if (rest.size() > 16) return fmt::format("at '{}…'", utf8_prefix(rest, 16));
   return fmt::format("at '{}'", rest);
