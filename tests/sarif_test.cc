@@ -381,3 +381,29 @@ TEST_CASE("json, json-lines: a large report written in pieces on several threads
   render_json(none, s.sm, {}, o);
   CHECK(none.str().starts_with("{\n  \"diagnostics\": [],\n"));
 }
+
+TEST_CASE("json, json-lines: a fix's text keeps its line endings; invalid UTF-8 becomes U+FFFD", "[json]") {
+  // The replacement of an inserted line (RRF307's M568) used to come out with U+FFFD for its "\n": a tool that
+  // applied the JSON's fixes would have joined the lines with garbage. SARIF always kept it.
+  Sample s;
+  s.diags[0].fix->edits[0].replacement = "\r\nM568 P1 S0\x01\tx\xff";
+  s.diags[0].message = "a message with a line\nfeed";
+  RenderOptions o;
+  o.rules = &builtin_rules();
+  std::ostringstream jl, js;
+  render_json_lines(jl, s.sm, s.diags, o);
+  render_json(js, s.sm, s.diags, o);
+  const json doc = json::parse(js.str());
+  CHECK(doc["diagnostics"][0]["fix"]["edits"][0]["replacement"] == "\r\nM568 P1 S0\x01\tx\xEF\xBF\xBD");
+  CHECK(doc["diagnostics"][0]["message"] ==
+        "a message with a line\xEF\xBF\xBD"
+        "feed");  // messages: as before
+  std::istringstream in(jl.str());
+  std::string line;
+  std::getline(in, line);
+  CHECK(json::parse(line)["fix"]["edits"][0]["replacement"] == "\r\nM568 P1 S0\x01\tx\xEF\xBF\xBD");
+  CHECK(valid_utf8("a\nb\xc3") == "a\nb\xEF\xBF\xBD");
+  CHECK(sanitize("a\nb\xc3") ==
+        "a\xEF\xBF\xBD"
+        "b\xEF\xBF\xBD");
+}

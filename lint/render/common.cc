@@ -27,7 +27,9 @@ Range range_of(const SourceManager& sm, const Location& loc) {
   return Range{f.position(loc.span.begin), f.position(std::max(loc.span.begin, loc.span.end), true)};
 }
 
-std::string sanitize(std::string_view s) {
+namespace {
+
+std::string replace_invalid(std::string_view s, bool keep_controls) {
   std::string out;
   out.reserve(s.size());
   size_t i = 0;
@@ -50,7 +52,7 @@ std::string sanitize(std::string_view s) {
       ++i;
       continue;
     }
-    if (len == 1 && (c < 0x20 || c == 0x7F) && c != '\t') {
+    if (len == 1 && (c < 0x20 || c == 0x7F) && c != '\t' && !keep_controls) {
       out += "\xEF\xBF\xBD";
     } else {
       out.append(s.substr(i, len));
@@ -59,6 +61,11 @@ std::string sanitize(std::string_view s) {
   }
   return out;
 }
+
+}  // namespace
+
+std::string sanitize(std::string_view s) { return replace_invalid(s, false); }
+std::string valid_utf8(std::string_view s) { return replace_invalid(s, true); }
 
 std::string rule_url(std::string_view docs_base, std::string_view name) {
   std::string url = docs_base.empty() ? std::string("docs/rules/") : std::string(docs_base);

@@ -25,7 +25,8 @@ void write_located(JsonWriter& w, JsonPaths& paths, const Location& loc, std::st
   w.member("end_line", r.end.line);
   w.member("file", paths.of(loc.file));
   w.member("line", r.start.line);
-  w.member(text_key, sanitize(text));
+  // A fix's text keeps its line endings (the JSON escapes them); a note's message is sanitized like any message.
+  w.member(text_key, text_key == "replacement" ? valid_utf8(text) : sanitize(text));
   w.end_object();
 }
 

@@ -100,6 +100,9 @@ void write_diagnostics_json(std::ostream& os, const SourceManager& sm, const std
 
 /// Text with invalid UTF-8 replaced by U+FFFD and control characters escaped, safe for terminals and JSON.
 std::string sanitize(std::string_view s);
+/// Text with invalid UTF-8 replaced by U+FFFD but every other byte kept, line endings and control characters too:
+/// a fix's replacement text in JSON, which escapes them (sanitize() made the line ending of an inserted line U+FFFD).
+std::string valid_utf8(std::string_view s);
 
 /// The source line of an edit's start after applying the fix's edits to it (for the `help:` preview), with its
 /// 1-based line number; nullopt when the fix has no edit in a known file. Empty text: the line is removed.

@@ -44,6 +44,19 @@ void check_json(const SourceManager& sm, const MachineResult& r, const RenderOpt
       !is_array_of(doc, "machines", 1) || !doc.contains("summary") || !doc["summary"].is_object())
     __builtin_trap();
   for (const json& d : doc["diagnostics"]) check_diagnostic(d);
+  // A fix's edits carry their text as written (line endings included), only invalid UTF-8 replaced.
+  for (size_t i = 0; i < r.diagnostics.size(); ++i) {
+    const Diagnostic& d = r.diagnostics[i];
+    const json& f = doc["diagnostics"][i]["fix"];
+    if (!d.fix) {
+      if (!f.is_null()) __builtin_trap();
+      continue;
+    }
+    if (!is_array_of(f, "edits", d.fix->edits.size())) __builtin_trap();
+    for (size_t k = 0; k < d.fix->edits.size(); ++k)
+      if (f["edits"][k].value("replacement", std::string("\x01")) != valid_utf8(d.fix->edits[k].replacement))
+        __builtin_trap();
+  }
 
   std::ostringstream lines;
   render_json_lines(lines, sm, r.diagnostics, ro);
