@@ -624,3 +624,20 @@ TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load 
   CHECK(r.machine->problems()[0].sd_path == "/sys/config.g");  // the CLI makes this an error of the card (exit 2)
   CHECK(r.machine->unit_count() == 1);                         // tools.g is still linted, as an entry
 }
+
+TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "[robustness][fix]") {
+  // RRF307's M568 copied `P{pa@am.T}` from a G10 whose expression does not parse: the fix added a second syntax
+  // error. The finding stays; the fix is not offered for such a command. The G10 beside it keeps its fix.
+  MemoryReader reader;
+  reader.add("/sys/config.g", "M584 X0 Y1 Z2 E3\nM563 P0 D0\nM563 P1 D0\nG10 P{pa@am.T} S200\nG10 P1 S200\n");
+  SourceManager sm;
+  LintOptions lo;
+  lo.firmware = Version(3, 5, 0);
+  lo.select = {"RRF307"};
+  MachineResult r = lint_machine(sm, reader, builtin_rules(), lo);
+  REQUIRE(r.diagnostics.size() == 2);
+  CHECK(r.diagnostics[0].code == "RRF307");
+  CHECK_FALSE(r.diagnostics[0].fix);
+  REQUIRE(r.diagnostics[1].fix);
+  CHECK(r.diagnostics[1].fix->title == "replace with 'M568 P1 S200'");
+}
