@@ -46,7 +46,8 @@ G10 P0 X0 Y0 Z-0.2
 
 ## Fix safety
 When the M563 that creates the tool comes later in the same file, the fix moves the G10 line to just after it.
-Several such lines for one tool move one at a time, the last first, so they keep their order.
+Several such lines for one tool (its G10s and M568s before the M563) move together, in their order, with the first
+one's fix; another M563 for the tool between them, or a line that cannot move plainly, leaves them without a fix.
 It is unsafe: the values then take effect, which changes what the machine does (that is the intent, but check
 them), and anything between the two lines that relied on the tool not existing behaves differently.
 
@@ -98,9 +99,23 @@ void check(const NodeContext& cx, Sink& out) {
   Report r = out.report(kMeta, cx.at(c.span), std::move(msg));
   if (later == kNoNode) return;
   r.note(cx.where(later), fmt::format("tool {} is created here", n));
-  if (tools::same_tool_between(cx, later, n)) return;  // that line moves first; this one follows in the next round
-  if (auto fix = tools::move_line_after(cx, later, fmt::format("move the line after the 'M563 P{}'", n)))
-    r.fix(std::move(*fix));
+  // The later lines for this tool before the M563 (its G10s and M568s) move with this one, in their order: the
+  // first line's fix moves them all in one round (the others' fixes overlap it and are left). Another M563 for the
+  // tool, or a command whose tool is not known, between: no fix.
+  std::vector<NodeId> also;
+  for (NodeId i = cx.id + 1; i < later; ++i) {
+    const tools::NodeCommand nc = tools::command_at(cx.machine, cx.graph, i);
+    if (!nc.is('G', 10) && !nc.is('M', 563) && !nc.is('M', 568)) continue;
+    auto Pi = get_int(*nc.pf, *nc.c, 'P');
+    if (!Pi.known()) return;
+    if (Pi.value != n) continue;
+    if (nc.is('M', 563)) return;
+    also.push_back(i);
+  }
+  const std::string title =
+      also.empty() ? fmt::format("move the line after the 'M563 P{}'", n)
+                   : fmt::format("move the {} lines of tool {} from here after the 'M563 P{}'", also.size() + 1, n, n);
+  if (auto fix = tools::move_lines_after(cx, also, later, title)) r.fix(std::move(*fix));
 }
 
 }  // namespace

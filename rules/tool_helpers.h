@@ -233,39 +233,59 @@ inline bool same_tool_between(const NodeContext& cx, NodeId to, int n) {
   return false;
 }
 
-/// The fix that moves the line of the command at `cx` to just after the line of the command at `target`, both in
-/// the same file: delete the whole line with its terminator, insert it after the target line, keeping the
-/// file's line ending. Nullopt when the move is not plainly possible (other commands on the line, conditional
-/// blocks, another file).
-inline std::optional<Fix> move_line_after(const NodeContext& cx, NodeId target, std::string title) {
+/// The fix that moves the line of the command at `cx`, and the lines of the commands at `also` (later nodes before
+/// `target`, in order), to just after the line of the command at `target`, all in one file: delete each whole line
+/// with its terminator, insert them in their order after the target line, keeping the file's line endings. Moving
+/// them in one fix lets one round of --fix settle a run of lines (one fix per line would insert at the same point,
+/// which apply_fixes takes one round at a time). Nullopt when a move is not plainly possible (other commands on a
+/// line, conditional blocks, another file).
+inline std::optional<Fix> move_lines_after(const NodeContext& cx, const std::vector<NodeId>& also, NodeId target,
+                                           std::string title) {
   const Node& here = cx.node();
   const Node& there = cx.graph.nodes[target];
   if (there.kind != NodeKind::Command || there.unit != here.unit) return std::nullopt;
   const FileUnit& u = cx.unit();
   const ParsedFile& pf = u.parsed;
   const SourceFile& src = *u.source;
-  const Command& c = cx.command();
   const Command& t = pf.commands[there.index];
-  const Line& cl = pf.lines[c.line];
   const Line& tl = pf.lines[t.line];
-  if (cl.command_count != 1 || cl.conditional || cl.in_loop || cl.after_nul || cl.indent != 0) return std::nullopt;
   if (tl.conditional || tl.in_loop || tl.indent != 0) return std::nullopt;
-  const uint32_t from = src.line_of(c.span.begin), to = src.line_of(t.span.begin);
-  if (to <= from) return std::nullopt;
-  const Span fl = src.line_span(from), tls = src.line_span(to);
-  const std::string_view fterm = src.terminator(from), tterm = src.terminator(to);
-  if (fterm.empty()) return std::nullopt;
-  const std::string line(src.slice(fl));
+  const uint32_t to = src.line_of(t.span.begin);
+  const Span tls = src.line_span(to);
+  const std::string_view tterm = src.terminator(to);
   const FileId f = src.id();
-  Fix fix = Fix::unsafe(std::move(title),
-                        Edit::remove(Location{f, Span{fl.begin, fl.end + static_cast<uint32_t>(fterm.size())}}));
-  if (tterm.empty()) {
-    fix.edits.push_back(Edit::insert(Location{f, Span{tls.end, tls.end}}, std::string(fterm) + line));
+  Fix fix = Fix::unsafe(std::move(title));
+  std::string moved;
+  uint32_t last = 0;
+  std::string_view fterm;
+  for (size_t k = 0; k <= also.size(); ++k) {
+    const Node& n = k == 0 ? here : cx.graph.nodes[also[k - 1]];
+    if (n.kind != NodeKind::Command || n.unit != here.unit) return std::nullopt;
+    const Command& c = pf.commands[n.index];
+    const Line& cl = pf.lines[c.line];
+    if (cl.command_count != 1 || cl.conditional || cl.in_loop || cl.after_nul || cl.indent != 0) return std::nullopt;
+    const uint32_t from = src.line_of(c.span.begin);
+    if (from >= to || (k > 0 && from <= last)) return std::nullopt;
+    last = from;
+    const Span fl = src.line_span(from);
+    fterm = src.terminator(from);
+    if (fterm.empty()) return std::nullopt;
+    fix.edits.push_back(Edit::remove(Location{f, Span{fl.begin, fl.end + static_cast<uint32_t>(fterm.size())}}));
+    moved += std::string(src.slice(fl)) + std::string(fterm);
+  }
+  if (tterm.empty()) {  // the target is the last line: a line ending first, none after the last moved line
+    moved.resize(moved.size() - fterm.size());
+    fix.edits.push_back(Edit::insert(Location{f, Span{tls.end, tls.end}}, std::string(fterm) + moved));
   } else {
     const uint32_t at = tls.end + static_cast<uint32_t>(tterm.size());
-    fix.edits.push_back(Edit::insert(Location{f, Span{at, at}}, line + std::string(fterm)));
+    fix.edits.push_back(Edit::insert(Location{f, Span{at, at}}, moved));
   }
   return fix;
+}
+
+/// The fix that moves the line of the command at `cx` alone (move_lines_after).
+inline std::optional<Fix> move_line_after(const NodeContext& cx, NodeId target, std::string title) {
+  return move_lines_after(cx, {}, target, std::move(title));
 }
 
 /// Is this command a G10 in tool form or an M568 that sets tool settings (3.3+)?

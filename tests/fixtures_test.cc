@@ -58,18 +58,29 @@ std::string spelled(const ExpectItem& x) {
 }
 
 /// The fixes of `rule` in a lint run, by sd_path, at the allowed applicability.
-std::map<std::string, std::vector<Edit>> applicable_edits(const LintRun& run, const std::string& rule, bool unsafe) {
-  std::map<std::string, std::vector<Edit>> edits;
-  for (const Finding& f : run.findings) {
-    const Diagnostic& d = *f.diag;
-    if (f.rule != rule || !d.fix) continue;
-    if (d.fix->applicability == Applicability::Unsafe && !unsafe) continue;
-    for (const Edit& e : d.fix->edits) {
-      if (e.loc.file == kNoFile || e.loc.file >= run.sources.size()) continue;
-      edits[run.sources.get(e.loc.file).sd_path()].push_back(e);
-    }
+/// One round of the rule's fixes applied to `texts` (by SD path) as `rrflint check --fix` applies them
+/// (cli::apply_fixes: whole fixes in order, none overlapping one taken before it, the file's line endings). The
+/// card was linted with its expectation comments blanked, which keeps every offset, so the edits apply to the text
+/// with the comments. Returns whether a text changed.
+bool apply_rule_fixes(const LintRun& run, const std::string& rule, bool unsafe,
+                      std::map<std::string, std::string>& texts) {
+  std::vector<Diagnostic> mine;
+  for (const Finding& f : run.findings)
+    if (f.rule == rule && f.diag->fix) mine.push_back(*f.diag);
+  std::map<FileId, std::string> by_id;
+  for (FileId id = 0; id < run.sources.size(); ++id)
+    if (auto it = texts.find(run.sources.get(id).sd_path()); it != texts.end()) by_id.emplace(id, it->second);
+  cli::FixOptions fo;
+  fo.unsafe = unsafe;
+  cli::apply_fixes(
+      run.sources, mine, fo, [&](FileId id) { return by_id.count(id) > 0; }, by_id);
+  bool changed = false;
+  for (const auto& [id, text] : by_id) {
+    std::string& t = texts[run.sources.get(id).sd_path()];
+    changed = changed || t != text;
+    t = text;
   }
-  return edits;
+  return changed;
 }
 
 std::map<std::string, std::string> blanked_card(const std::map<std::string, std::string>& texts, const FixtureCase& c) {
@@ -109,16 +120,7 @@ void check_fixes(FixtureCase& c, const CaseOptions& opts) {
           ++initially_fixable;
       }
     }
-    auto edits = applicable_edits(*run, c.rule, opts.unsafe_fixes);
-    bool changed = false;
-    for (auto& [sd, list] : edits) {
-      auto it = texts.find(sd);
-      if (it == texts.end()) continue;
-      std::string before = it->second;
-      apply_edits(it->second, list);
-      changed = changed || before != it->second;
-    }
-    if (!changed) break;
+    if (!apply_rule_fixes(*run, c.rule, opts.unsafe_fixes, texts)) break;
   }
   if (round == 10) FAIL_CHECK(c.name << ": the fixes did not converge in 10 rounds");
 

@@ -7,6 +7,7 @@
 //   full disk             a 64 KiB tmpfs in a private mount namespace (unshare -m) when the system allows it,
 //                         else a folder nobody may write to (run as nobody): both make the write fail
 //   changed during a run  write_atomic (the writer seam) called directly with stale text
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <catch2/catch.hpp>
@@ -640,4 +641,31 @@ TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "
   CHECK_FALSE(r.diagnostics[0].fix);
   REQUIRE(r.diagnostics[1].fix);
   CHECK(r.diagnostics[1].fix->title == "replace with 'M568 P1 S200'");
+}
+
+TEST_CASE("one round of --fix moves a run of a tool's lines after its M563 (found by fuzz_fix)", "[robustness][fix]") {
+  // RRF301 moved one line per round (each line's fix inserted at the same point, which apply_fixes takes one at a
+  // time): twelve G10 lines for tool 0 needed twelve rounds, past --fix's ten. The first line's fix now moves the
+  // run, in order, and the lines of another tool in between stay where they are.
+  std::string config = "M584 X0 Y1 Z2 E3:4\n";
+  for (int i = 0; i < 12; ++i) config += fmt::format("G10 P0 X{} Y0 Z0\n", i);
+  config += "G10 P7 X0 Y0 Z0\nM563 P0 D0\nM563 P1 D1\n";
+  MemoryReader reader;
+  reader.add("/sys/config.g", config);
+  SourceManager sm;
+  LintOptions lo;
+  lo.firmware = Version(3, 5, 0);
+  lo.select = {"RRF301"};
+  MachineResult r = lint_machine(sm, reader, builtin_rules(), lo);
+  REQUIRE(r.diagnostics.size() == 13);
+  cli::FixOptions fo;
+  fo.unsafe = true;
+  std::map<FileId, std::string> texts;
+  CHECK(cli::apply_fixes(
+            sm, r.diagnostics, fo, [](FileId) { return true; }, texts) == 1);
+  REQUIRE(texts.size() == 1);
+  std::string want = "M584 X0 Y1 Z2 E3:4\nG10 P7 X0 Y0 Z0\nM563 P0 D0\n";
+  for (int i = 0; i < 12; ++i) want += fmt::format("G10 P0 X{} Y0 Z0\n", i);
+  want += "M563 P1 D1\n";
+  CHECK(texts.begin()->second == want);
 }
