@@ -626,16 +626,22 @@ TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load 
   CHECK(r.machine->unit_count() == 1);                         // tools.g is still linted, as an entry
 }
 
+// config.g alone, for RRF 3.5, with one rule.
+static MachineResult lint_one_rule(SourceManager& sm, const std::string& config, const std::string& rule) {
+  MemoryReader reader;
+  reader.add("/sys/config.g", config);
+  LintOptions lo;
+  lo.firmware = Version(3, 5, 0);
+  lo.select = {rule};
+  return lint_machine(sm, reader, builtin_rules(), lo);
+}
+
 TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "[robustness][fix]") {
   // RRF307's M568 copied `P{pa@am.T}` from a G10 whose expression does not parse: the fix added a second syntax
   // error. The finding stays; the fix is not offered for such a command. The G10 beside it keeps its fix.
-  MemoryReader reader;
-  reader.add("/sys/config.g", "M584 X0 Y1 Z2 E3\nM563 P0 D0\nM563 P1 D0\nG10 P{pa@am.T} S200\nG10 P1 S200\n");
   SourceManager sm;
-  LintOptions lo;
-  lo.firmware = Version(3, 5, 0);
-  lo.select = {"RRF307"};
-  MachineResult r = lint_machine(sm, reader, builtin_rules(), lo);
+  MachineResult r =
+      lint_one_rule(sm, "M584 X0 Y1 Z2 E3\nM563 P0 D0\nM563 P1 D0\nG10 P{pa@am.T} S200\nG10 P1 S200\n", "RRF307");
   REQUIRE(r.diagnostics.size() == 2);
   CHECK(r.diagnostics[0].code == "RRF307");
   CHECK_FALSE(r.diagnostics[0].fix);
@@ -650,13 +656,8 @@ TEST_CASE("one round of --fix moves a run of a tool's lines after its M563 (foun
   std::string config = "M584 X0 Y1 Z2 E3:4\n";
   for (int i = 0; i < 12; ++i) config += fmt::format("G10 P0 X{} Y0 Z0\n", i);
   config += "G10 P7 X0 Y0 Z0\nM563 P0 D0\nM563 P1 D1\n";
-  MemoryReader reader;
-  reader.add("/sys/config.g", config);
   SourceManager sm;
-  LintOptions lo;
-  lo.firmware = Version(3, 5, 0);
-  lo.select = {"RRF301"};
-  MachineResult r = lint_machine(sm, reader, builtin_rules(), lo);
+  MachineResult r = lint_one_rule(sm, config, "RRF301");
   REQUIRE(r.diagnostics.size() == 13);
   cli::FixOptions fo;
   fo.unsafe = true;
