@@ -96,13 +96,10 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
     if (p) m568 += " " + std::string(pf.text(p->span));
   const std::string why =
       a == Applicability::Safe ? std::string() : fmt::format(" if the firmware is RRF {} or later", floor_text(needs));
-  if (!others) {
-    Fix fix = Fix::safe(fmt::format("replace with '{}'{}", m568, why), Edit::replace(cx.at(c.span), m568));
-    fix.applicability = a;
-    return fix;
-  }
-  Fix fix = Fix::safe(fmt::format("move the temperatures to '{}'{}", m568, why));
+  Fix fix = others ? Fix::safe(fmt::format("move the temperatures to '{}'{}", m568, why))
+                   : Fix::safe(fmt::format("replace with '{}'{}", m568, why), Edit::replace(cx.at(c.span), m568));
   fix.applicability = a;
+  if (!others) return fix;
   // Delete each of R and S with the blanks before it.
   for (const Param* p : {R, S}) {
     if (!p) continue;

@@ -102,20 +102,12 @@ void check(const NodeContext& cx, Sink& out) {
   // The later lines for this tool before the M563 (its G10s and M568s) move with this one, in their order: the
   // first line's fix moves them all in one round (the others' fixes overlap it and are left). Another M563 for the
   // tool, or a command whose tool is not known, between: no fix.
-  std::vector<NodeId> also;
-  for (NodeId i = cx.id + 1; i < later; ++i) {
-    const tools::NodeCommand nc = tools::command_at(cx.machine, cx.graph, i);
-    if (!nc.is('G', 10) && !nc.is('M', 563) && !nc.is('M', 568)) continue;
-    auto Pi = get_int(*nc.pf, *nc.c, 'P');
-    if (!Pi.known()) return;
-    if (Pi.value != n) continue;
-    if (nc.is('M', 563)) return;
-    also.push_back(i);
-  }
-  const std::string title =
-      also.empty() ? fmt::format("move the line after the 'M563 P{}'", n)
-                   : fmt::format("move the {} lines of tool {} from here after the 'M563 P{}'", also.size() + 1, n, n);
-  if (auto fix = tools::move_lines_after(cx, also, later, title)) r.fix(std::move(*fix));
+  const auto also = tools::tool_lines_between(cx, later, n);
+  if (!also) return;
+  const std::string title = also->empty() ? fmt::format("move the line after the 'M563 P{}'", n)
+                                          : fmt::format("move the {} lines of tool {} from here after the 'M563 P{}'",
+                                                        also->size() + 1, n, n);
+  if (auto fix = tools::move_lines_after(cx, *also, later, title)) r.fix(std::move(*fix));
 }
 
 }  // namespace

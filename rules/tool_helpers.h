@@ -221,16 +221,25 @@ inline std::string quote(const ParsedFile& pf, const Command& c) {
   return fmt::format("'{} …'", utf8_prefix(t, cut));
 }
 
+/// The G10 and M568 commands for tool n between the command at `cx` and node `to`, in order; nullopt when an M563
+/// for tool n, or a G10, M563 or M568 whose tool is not known, lies between (nothing may move past it).
+inline std::optional<std::vector<NodeId>> tool_lines_between(const NodeContext& cx, NodeId to, int n) {
+  std::vector<NodeId> lines;
+  for (NodeId i = cx.id + 1; i < to; ++i) {
+    const NodeCommand nc = command_at(cx.machine, cx.graph, i);
+    if (!nc.is('G', 10) && !nc.is('M', 563) && !nc.is('M', 568)) continue;
+    auto P = get_int(*nc.pf, *nc.c, 'P');
+    if (!P.known() || (P.value == n && nc.is('M', 563))) return std::nullopt;
+    if (P.value == n) lines.push_back(i);
+  }
+  return lines;
+}
+
 /// Is there a G10, M563 or M568 for tool n (or an unknown tool) between the command at `cx` and node `to`? Then
 /// moving the line past it would change which value wins; the later line moves first, in an earlier round.
 inline bool same_tool_between(const NodeContext& cx, NodeId to, int n) {
-  for (NodeId i = cx.id + 1; i < to; ++i) {
-    NodeCommand nc = command_at(cx.machine, cx.graph, i);
-    if (!nc.is('G', 10) && !nc.is('M', 563) && !nc.is('M', 568)) continue;
-    auto P = get_int(*nc.pf, *nc.c, 'P');
-    if (!P.known() || P.value == n) return true;
-  }
-  return false;
+  const auto lines = tool_lines_between(cx, to, n);
+  return !lines || !lines->empty();
 }
 
 /// The fix that moves the line of the command at `cx`, and the lines of the commands at `also` (later nodes before

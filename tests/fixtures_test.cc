@@ -57,7 +57,6 @@ std::string spelled(const ExpectItem& x) {
          (x.substring.empty() ? "" : " \"" + x.substring + "\"");
 }
 
-/// The fixes of `rule` in a lint run, by sd_path, at the allowed applicability.
 /// One round of the rule's fixes applied to `texts` (by SD path) as `rrflint check --fix` applies them
 /// (cli::apply_fixes: whole fixes in order, none overlapping one taken before it, the file's line endings). The
 /// card was linted with its expectation comments blanked, which keeps every offset, so the edits apply to the text

@@ -15,7 +15,7 @@
 namespace rrflint {
 namespace {
 
-// An edit or a note: {column, end_column, end_line, file, line, <text_key>: text}.
+// An edit or a note: {column, end_column, end_line, file, line, <text_key>: text}; `text` is valid UTF-8.
 void write_located(JsonWriter& w, JsonPaths& paths, const Location& loc, std::string_view text_key,
                    std::string_view text) {
   const Range r = range_of(paths.sources(), loc);
@@ -25,8 +25,7 @@ void write_located(JsonWriter& w, JsonPaths& paths, const Location& loc, std::st
   w.member("end_line", r.end.line);
   w.member("file", paths.of(loc.file));
   w.member("line", r.start.line);
-  // A fix's text keeps its line endings (the JSON escapes them); a note's message is sanitized like any message.
-  w.member(text_key, text_key == "replacement" ? valid_utf8(text) : sanitize(text));
+  w.member(text_key, text);
   w.end_object();
 }
 
@@ -52,7 +51,8 @@ void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d,
     w.member("applicability", applicability_name(d.fix->applicability));
     w.key("edits");
     w.begin_array();
-    for (const Edit& e : d.fix->edits) write_located(w, paths, e.loc, "replacement", e.replacement);
+    // A fix's text keeps its line endings (the JSON escapes them); a message is sanitized.
+    for (const Edit& e : d.fix->edits) write_located(w, paths, e.loc, "replacement", valid_utf8(e.replacement));
     w.end_array();
     w.member("message", sanitize(d.fix->title));
     w.end_object();
@@ -64,7 +64,7 @@ void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d,
   w.member("name", d.name);
   w.key("notes");
   w.begin_array();
-  for (const Note& n : d.notes) write_located(w, paths, n.loc, "message", n.message);
+  for (const Note& n : d.notes) write_located(w, paths, n.loc, "message", sanitize(n.message));
   w.end_array();
   w.member("severity", severity_name(d.severity));
   w.member("url", rule_url(docs_base, d.name));
