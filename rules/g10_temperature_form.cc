@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "rules/append_fix.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -54,8 +55,8 @@ line ending, and keeps the offsets on the `G10`; a `G10` that held only `P` and 
 unchanged: the fix is safe when the files rule out older firmware (`--firmware`, `.rrflint.toml`, or a command
 that needs RRF 3.3 or later). When the target is 3.3 or later only because it is the newest release or a version
 comment says so, the fix is unsafe: on RRF 3.2 and earlier `M568` does nothing, and the tool would lose its
-temperatures. It is offered only when the `G10` is alone on its line and parses, and for a `G10` without `P`
-only from RRF 3.4 (3.3's `M568` requires `P`).
+temperatures. It is offered only when the `G10` is alone on its line and parses whole (no `;` cutting an
+expression open), and for a `G10` without `P` only from RRF 3.4 (3.3's `M568` requires `P`).
 
 ## References
 - rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M568 tool settings](../firmware-behaviour.md#m568-tool-settings)
@@ -70,9 +71,9 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
   const SourceFile& src = cx.source();
   const Line& line = pf.line_of(c);
   if (line.command_count != 1) return std::nullopt;
-  // Not a command with a parse error in it: the M568 would copy the broken text (`P{pa@am.T}`), a second error.
-  for (const ParseError& e : pf.errors)
-    if (c.span.begin <= e.span.begin && e.span.begin < c.span.end) return std::nullopt;
+  // Not a command that does not parse whole: the M568 would copy the broken text (`P{pa@am.T}`, or an `S{…` that a
+  // ';' cuts open), a new syntax error.
+  if (!tools::parses_whole(pf, c)) return std::nullopt;
   const std::vector<Param> params(pf.params(c).begin(), pf.params(c).end());
   const Param *P = nullptr, *R = nullptr, *S = nullptr;
   bool others = false;

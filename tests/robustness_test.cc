@@ -647,6 +647,12 @@ TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "
   CHECK_FALSE(r.diagnostics[0].fix);
   REQUIRE(r.diagnostics[1].fix);
   CHECK(r.diagnostics[1].fix->title == "replace with 'M568 P1 S200'");
+  // Nor one that a ';' cuts open (RRF113, no parse error): the moved `S{…` would lose its closing '}'.
+  SourceManager sm2;
+  r = lint_one_rule(sm2, "M584 X0 Y1 Z2 E3\nM563 P0 D0\nG10 P0 X1 S{global.t ; standby }\n", "RRF307");
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].code == "RRF307");
+  CHECK_FALSE(r.diagnostics[0].fix);
 }
 
 TEST_CASE("one round of --fix moves a run of a tool's lines after its M563 (found by fuzz_fix)", "[robustness][fix]") {
