@@ -114,13 +114,6 @@ void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Total
     t.lone_hint = true;
 }
 
-// What the fix rounds of a job changed, by SD path.
-struct FixedTexts {
-  std::map<std::string, std::string> original, current;  // by SD path
-  std::map<std::string, std::string> display;
-  std::map<std::string, size_t> fixed_in;  // fixes applied, by SD path (a fix counts for the file it starts in)
-};
-
 // One job once its settings are known: lint (unless linted ahead), then the requested rewrite, then collect what
 // is to be reported.
 struct JobRun {
@@ -169,39 +162,40 @@ struct JobRun {
       if (reportable(*r.machine->unit(i).source)) ++t.linted;
   }
 
-  // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds), relinting after each.
-  FixedTexts fix_rounds() {
-    FixedTexts fixed;
-    auto& [original, current, display, fixed_in] = fixed;
+  // --fix / --diff: apply fixes round after round until none applies (at most 10 rounds), relinting after each,
+  // undoing a round that makes a syntax error (run_fix_rounds). Both are bugs in a rule's fix, and said so.
+  FixRounds fix_rounds() {
     FixOptions fo;
     fo.unsafe = co.unsafe_fixes;
-    for (int round = 0; round < fo.max_rounds; ++round) {
-      std::map<FileId, std::string> texts;
-      auto allowed = [&](FileId id) {
-        const SourceFile& f = sm.get(id);
-        return reportable(f) && (reader.disk_path(f.sd_path()) || job.stdin_bytes);
-      };
-      std::map<FileId, size_t> per_file;
-      const size_t n = apply_fixes(sm, r.diagnostics, fo, allowed, texts, &per_file);
-      if (n == 0) break;
-      t.fixed += n;
-      for (const auto& [id, k] : per_file) fixed_in[sm.get(id).sd_path()] += k;
-      for (auto& [id, text] : texts) {
-        const SourceFile& f = sm.get(id);
-        original.try_emplace(f.sd_path(), f.text());
-        display[f.sd_path()] = f.display_path();
-        current[f.sd_path()] = text;
-        reader.set(f.sd_path(), text);
-      }
-      r = lint_machine(sm, reader, builtin_rules(), eff.lint);
-    }
+    FixRounds fixed = run_fix_rounds(
+        sm, r, fo,
+        [&](FileId id) {
+          const SourceFile& f = sm.get(id);
+          return reportable(f) && (reader.disk_path(f.sd_path()) || job.stdin_bytes);
+        },
+        [&](const std::string& sd, const std::string& text) { reader.set(sd, text); },
+        [&] { return lint_machine(sm, reader, builtin_rules(), eff.lint); });
+    t.fixed += fixed.fixed;
+    for (const auto& [sd, codes] : fixed.reverted)
+      warning(
+          fmt::format("{}: the fixes of {} made a syntax error in it, so they were undone and the file was not "
+                      "fixed further: this is a bug in rrflint, please report it with the file",
+                      fixed.display[sd], fmt::join(codes, ", ")));
+    if (!fixed.settled)
+      warning(
+          fmt::format("fixes still apply after {} rounds of --fix: run it again to apply them, and please report "
+                      "this with the files (each fix should settle in a round or two)",
+                      fo.max_rounds));
     return fixed;
   }
 
   // --fix writes the fixed files (a file that cannot be written keeps its text and its findings), --diff collects
   // the diff.
-  void write_fixes(FixedTexts& fixed) {
-    auto& [original, current, display, fixed_in] = fixed;
+  void write_fixes(FixRounds& fixed) {
+    auto& original = fixed.original;
+    auto& current = fixed.current;
+    auto& display = fixed.display;
+    auto& fixed_in = fixed.fixed_in;
     // Nothing is written outside the linted folder (a card's root, a lone file's folder).
     const std::optional<fs::path> root =
         job.card ? std::optional(job.card->root) : std::optional(fs::absolute(job.standalone).parent_path());
@@ -312,7 +306,7 @@ bool run_job(const Job& job, const CheckOptions& co, Settings& settings, GitIgno
   JobRun run{job, co, settings, gitignore, sm, t, eff};
   run.lint(std::move(pre));
   if (co.fix || co.diff) {
-    FixedTexts fixed = run.fix_rounds();
+    FixRounds fixed = run.fix_rounds();
     run.write_fixes(fixed);
   }
   if (co.add_suppressions) {

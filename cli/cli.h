@@ -206,9 +206,33 @@ struct FixOptions {
 /// Picks non-overlapping fixes (whole fixes, never part of one) among `diags` that `allowed` accepts, applies
 /// them to `texts` (by FileId), keeping each file's line-ending style. Returns how many fixes were applied;
 /// `per_file` gets them by the file of each fix's first edit.
+/// `applied` gets the findings whose fixes were applied.
 size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
                    const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts,
-                   std::map<FileId, size_t>* per_file = nullptr);
+                   std::map<FileId, size_t>* per_file = nullptr, std::vector<const Diagnostic*>* applied = nullptr);
+
+/// What the fix rounds of one machine did (run_fix_rounds), by SD path.
+struct FixRounds {
+  std::map<std::string, std::string> original, current;  // the text before the first round, and after the last
+  std::map<std::string, std::string> display;            // the name to show
+  std::map<std::string, size_t> fixed_in;                // fixes kept, by the file each starts in
+  size_t fixed = 0;                                      // fixes kept in all
+  /// The files a round's fixes left with more parse errors than before (a bug in a rule's fix): that round was
+  /// undone, and these files were fixed no further. Each with the codes of the rules whose fixes were undone.
+  std::map<std::string, std::vector<std::string>> reverted;
+  /// False when fixes still applied after the last round (FixOptions::max_rounds): another --fix would change more.
+  bool settled = true;
+};
+
+/// `rrflint check --fix`'s rounds: applies the fixes of `r` to the files `allowed` accepts (apply_fixes), hands
+/// each changed text to `set_text` (by SD path) and re-lints with `relint`, until no fix applies or after
+/// fo.max_rounds rounds; `r` is then the lint of the fixed texts. The safety net: a round that leaves any file with
+/// more parse errors (syntax errors and expressions a ';' cuts open) than it had is undone, whole, and the files it
+/// made worse are not fixed again (FixRounds::reverted); the other files go on to the next round.
+FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOptions& fo,
+                         const std::function<bool(FileId)>& allowed,
+                         const std::function<void(const std::string& sd_path, const std::string& text)>& set_text,
+                         const std::function<MachineResult()>& relint);
 
 /// Writes `bytes` to `path` without ever leaving it half written: a temporary file in the same folder, then a
 /// rename, keeping the file's mode, owner and group. Refuses (returns false with `err`, writing nothing) when the

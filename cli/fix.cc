@@ -36,7 +36,7 @@ std::string with_eol(const std::string& s, std::string_view eol) {
 
 size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags, const FixOptions& fo,
                    const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts,
-                   std::map<FileId, size_t>* per_file) {
+                   std::map<FileId, size_t>* per_file, std::vector<const Diagnostic*>* applied_out) {
   std::map<FileId, std::vector<Span>> taken;
   std::map<FileId, std::vector<Edit>> accepted;
   size_t applied = 0;
@@ -70,6 +70,7 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
       accepted[e.loc.file].push_back(std::move(copy));
     }
     if (per_file) ++(*per_file)[d.fix->edits.front().loc.file];
+    if (applied_out) applied_out->push_back(&d);
     ++applied;
   }
   for (auto& [file, edits] : accepted) {
@@ -82,6 +83,77 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
       text.replace(it->loc.span.begin, it->loc.span.size(), it->replacement);
   }
   return applied;
+}
+
+namespace {
+
+// Parse errors and ';'-cut expressions, by lower-cased SD path.
+std::map<std::string, size_t> parse_problems(const MachineResult& r) {
+  std::map<std::string, size_t> n;
+  for (uint32_t i = 0; i < r.machine->unit_count(); ++i) {
+    const FileUnit& u = r.machine->unit(i);
+    n[to_lower(u.sd_path)] += u.parsed.errors.size() + u.parsed.semicolon_cuts.size();
+  }
+  return n;
+}
+
+size_t count_of(const std::map<std::string, size_t>& m, const std::string& key) {
+  auto it = m.find(key);
+  return it == m.end() ? 0 : it->second;
+}
+
+}  // namespace
+
+FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOptions& fo,
+                         const std::function<bool(FileId)>& allowed,
+                         const std::function<void(const std::string& sd_path, const std::string& text)>& set_text,
+                         const std::function<MachineResult()>& relint) {
+  FixRounds out;
+  std::set<std::string> frozen;  // lower-cased SD paths of files a round made worse
+  auto may_fix = [&](FileId id) { return allowed(id) && !frozen.count(to_lower(sm.get(id).sd_path())); };
+  for (int round = 0; round < fo.max_rounds; ++round) {
+    std::map<FileId, std::string> texts;
+    std::map<FileId, size_t> per_file;
+    std::vector<const Diagnostic*> applied;
+    const size_t n = apply_fixes(sm, r.diagnostics, fo, may_fix, texts, &per_file, &applied);
+    if (n == 0) return out;
+    std::map<std::string, std::string> before;  // this round's starting texts, by SD path
+    for (const auto& [id, text] : texts) {
+      const SourceFile& f = sm.get(id);
+      before.try_emplace(f.sd_path(), f.text());
+      out.original.try_emplace(f.sd_path(), f.text());
+      out.display[f.sd_path()] = f.display_path();
+      set_text(f.sd_path(), text);
+    }
+    MachineResult next = relint();
+    const std::map<std::string, size_t> was = parse_problems(r), is = parse_problems(next);
+    std::vector<std::string> worse;
+    for (const auto& [sd, text] : before)
+      if (count_of(is, to_lower(sd)) > count_of(was, to_lower(sd))) worse.push_back(sd);
+    if (!worse.empty()) {
+      // Undo the whole round (a fix may span files); `r` still describes the texts as they were before it.
+      for (const auto& [sd, text] : before) set_text(sd, text);
+      for (const std::string& sd : worse) {
+        frozen.insert(to_lower(sd));
+        std::vector<std::string>& codes = out.reverted[sd];
+        for (const Diagnostic* d : applied) {
+          const FileId f = d->fix->edits.front().loc.file;
+          if (to_lower(sm.get(f).sd_path()) == to_lower(sd) &&
+              std::find(codes.begin(), codes.end(), d->code) == codes.end())
+            codes.emplace_back(d->code);
+        }
+        std::sort(codes.begin(), codes.end());
+      }
+      continue;
+    }
+    out.fixed += n;
+    for (const auto& [id, k] : per_file) out.fixed_in[sm.get(id).sd_path()] += k;
+    for (auto& [id, text] : texts) out.current[sm.get(id).sd_path()] = std::move(text);
+    r = std::move(next);
+  }
+  std::map<FileId, std::string> scratch;
+  out.settled = apply_fixes(sm, r.diagnostics, fo, may_fix, scratch) == 0;
+  return out;
 }
 
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,

@@ -676,3 +676,97 @@ TEST_CASE("one round of --fix moves a run of a tool's lines after its M563 (foun
   want += "M563 P1 D1\n";
   CHECK(texts.begin()->second == want);
 }
+
+// Rules with broken fixes, for the safety net of --fix's rounds (cli::run_fix_rounds). TST901 "fixes" `G1 X1` into
+// `G1 X{1`, an expression that never closes; TST902 turns M80 into M81, a fix that is fine; TST903 appends to
+// every comment, so its fixes never settle.
+namespace {
+template <class Edit_of>
+void fix_each_line(const FileContext& ctx, Sink& out, const RuleMeta& meta, std::string_view starts, Edit_of edit_of) {
+  const ParsedFile& p = ctx.parsed();
+  for (size_t i = 0; i < p.lines.size(); ++i) {
+    const Line l = p.lines[i];
+    const std::string_view whole = p.text(l.span);
+    if (whole.substr(0, starts.size()) != starts) continue;
+    out.report(meta, ctx.at(l.span), "test").fix(Fix::safe("test", edit_of(ctx, l)));
+  }
+}
+const Rule kBreaksSyntax{RuleMeta{"TST901", "test-breaks-syntax", Severity::Warning, true, FixAvailability::Always},
+                         [](const FileContext& ctx, Sink& out) {
+                           fix_each_line(ctx, out, kBreaksSyntax.meta, "G1 X1", [](const FileContext& c, Line l) {
+                             return Edit::insert(c.at(Span{l.code.begin + 4, l.code.begin + 4}), "{");
+                           });
+                         }};
+const Rule kGoodFix{RuleMeta{"TST902", "test-good-fix", Severity::Warning, true, FixAvailability::Always},
+                    [](const FileContext& ctx, Sink& out) {
+                      fix_each_line(ctx, out, kGoodFix.meta, "M80", [](const FileContext& c, Line l) {
+                        return Edit::replace(c.at(Span{l.code.begin, l.code.begin + 3}), "M81");
+                      });
+                    }};
+const Rule kNeverSettles{RuleMeta{"TST903", "test-never-settles", Severity::Warning, true, FixAvailability::Always},
+                         [](const FileContext& ctx, Sink& out) {
+                           fix_each_line(ctx, out, kNeverSettles.meta, ";", [](const FileContext& c, Line l) {
+                             return Edit::insert(c.at(Span{l.span.end, l.span.end}), "!");
+                           });
+                         }};
+
+struct FixRoundsRun {
+  MemoryReader reader;
+  SourceManager sm;
+  RuleSet rules;
+  std::map<std::string, std::string> texts;
+  MachineResult r;
+  explicit FixRoundsRun(std::vector<const Rule*> rs, std::map<std::string, std::string> files)
+      : rules(std::move(rs)), texts(std::move(files)) {
+    r = relint();
+  }
+  MachineResult relint() {
+    reader = MemoryReader();
+    for (const auto& [sd, text] : texts) reader.add(sd, text);
+    return lint_machine(sm, reader, rules, LintOptions{});
+  }
+  cli::FixRounds run(int max_rounds = 10) {
+    cli::FixOptions fo;
+    fo.max_rounds = max_rounds;
+    return cli::run_fix_rounds(
+        sm, r, fo, [](FileId) { return true; },
+        [&](const std::string& sd, const std::string& text) { texts[sd] = text; }, [&] { return relint(); });
+  }
+};
+}  // namespace
+
+TEST_CASE("fix rounds: a round that makes a syntax error is undone, and that file is fixed no further", "[cli][fix]") {
+  FixRoundsRun run({&kBreaksSyntax, &kGoodFix},
+                   {{"/sys/config.g", "M80\nG1 X1\nM98 P\"m.g\"\n"}, {"/sys/m.g", "M80\nG1 Y2\n"}});
+  const cli::FixRounds f = run.run();
+  // config.g: the broken fix and the good one were in the same round: both undone, the file left as it was.
+  CHECK(run.texts["/sys/config.g"] == "M80\nG1 X1\nM98 P\"m.g\"\n");
+  CHECK(f.current.count("/sys/config.g") == 0);
+  REQUIRE(f.reverted.size() == 1);
+  CHECK(f.reverted.begin()->first == "/sys/config.g");
+  CHECK(f.reverted.begin()->second == std::vector<std::string>{"TST901", "TST902"});
+  // m.g: its good fix, undone with the round, is applied again in the next one and kept.
+  CHECK(run.texts["/sys/m.g"] == "M81\nG1 Y2\n");
+  CHECK(f.current.at("/sys/m.g") == "M81\nG1 Y2\n");
+  CHECK(f.fixed == 1);
+  CHECK(f.settled);
+  // The findings returned are those of the texts as they are: config.g's two still stand.
+  size_t in_config = 0;
+  for (const Diagnostic& d : run.r.diagnostics) in_config += run.sm.get(d.loc.file).sd_path() == "/sys/config.g";
+  CHECK(in_config == 2);
+}
+
+TEST_CASE("fix rounds: say when the fixes have not settled after the last round", "[cli][fix]") {
+  FixRoundsRun run({&kNeverSettles}, {{"/sys/config.g", "; a\nG28\n"}});
+  const cli::FixRounds f = run.run(3);
+  CHECK(run.texts["/sys/config.g"] == "; a!!!\nG28\n");
+  CHECK(f.fixed == 3);
+  CHECK_FALSE(f.settled);
+  CHECK(f.reverted.empty());
+  // Fixes that settle say so.
+  FixRoundsRun good({&kGoodFix}, {{"/sys/config.g", "M80\nM80\n"}});
+  const cli::FixRounds g = good.run(3);
+  CHECK(good.texts["/sys/config.g"] == "M81\nM81\n");
+  CHECK(g.fixed == 2);
+  CHECK(g.settled);
+}
