@@ -1,8 +1,9 @@
 // libFuzzer target: the fix round trip on a card in the card format of tests/fuzz/fuzz_input.h. Fixes (unsafe ones
-// too) are applied as `rrflint check --fix --unsafe-fixes` applies them (cli/fix.cc's apply_fixes, round after
+// too) are applied by the code of `rrflint check --fix --unsafe-fixes` (cli/fix.cc's run_fix_rounds: round after
 // round, relinting after each, at most FixOptions::max_rounds rounds). Checks: every relint passes the location
 // checks; no fix adds a syntax error (RRF100) to a file (but for the CR-to-LF fix, which shows RRF lines it did not
-// see); the rounds come to an end, so that a second `--fix` on the result changes nothing. Run it with scripts/fuzz.sh
+// see), nor a parse error (--fix's safety net never steps in); the rounds come to an end, so that a second `--fix`
+// on the result changes nothing. Run it with scripts/fuzz.sh
 // (tests/fuzz/RESULTS.md).
 #include <algorithm>
 #include <cstddef>
@@ -37,25 +38,26 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   cli::FixOptions fo;
   fo.unsafe = true;
-  // One round more than --fix runs: that round is the second `--fix`, which must find nothing left to apply.
-  for (int round = 0; round <= fo.max_rounds; ++round) {
-    std::map<FileId, std::string> texts;
-    const size_t n = cli::apply_fixes(
-        sm, r.diagnostics, fo, [](FileId) { return true; }, texts);
-    if (n == 0) return 0;
-    if (round == fo.max_rounds) __builtin_trap();  // the fixes do not settle
-    // A CR-only file is one line to RRF 3.6: its fix (RRF107) shows RRF the lines, and the errors in them.
-    std::set<std::string> split;
-    for (const Diagnostic& d : r.diagnostics)
-      if (d.code == "RRF107" && d.fix && d.loc.file != kNoFile) split.insert(sm.get(d.loc.file).sd_path());
-    for (auto& [id, text] : texts) card.reader.add(sm.get(id).sd_path(), text);
-    r = lint_machine(sm, card.reader, builtin_rules(), card.options);
-    fuzz::check_locations(sm, r.diagnostics);
-    for (const auto& [file, k] : syntax_errors(sm, r.diagnostics)) {
-      size_t& was = before[file];
-      if (k > was && !split.contains(file)) __builtin_trap();  // a fix made a syntax error
-      was = std::max(was, k);
-    }
-  }
+  const cli::FixRounds rounds = cli::run_fix_rounds(
+      sm, r, fo, [](FileId) { return true; },
+      [&](const std::string& sd, const std::string& text) { card.reader.add(sd, text); },
+      [&] {
+        // `r` is still the lint the round's fixes came from. A CR-only file is one line to RRF 3.6: its fix
+        // (RRF107) shows RRF the lines, and the errors in them.
+        std::set<std::string> split;
+        for (const Diagnostic& d : r.diagnostics)
+          if (d.code == "RRF107" && d.fix && d.loc.file != kNoFile) split.insert(sm.get(d.loc.file).sd_path());
+        MachineResult next = lint_machine(sm, card.reader, builtin_rules(), card.options);
+        fuzz::check_locations(sm, next.diagnostics);
+        for (const auto& [file, k] : syntax_errors(sm, next.diagnostics)) {
+          size_t& was = before[file];
+          if (k > was && !split.contains(file)) __builtin_trap();  // a fix made a syntax error
+          was = std::max(was, k);
+        }
+        return next;
+      });
+  // The safety net of --fix never has to step in (a round that adds a parse error is a rule's bug), and the
+  // fixes settle within --fix's rounds, so that a second `--fix` on the result changes nothing.
+  if (!rounds.reverted.empty() || !rounds.settled) __builtin_trap();
   return 0;
 }
