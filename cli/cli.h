@@ -211,6 +211,11 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
                    const std::function<bool(FileId)>& allowed, std::map<FileId, std::string>& texts,
                    std::map<FileId, size_t>* per_file = nullptr, std::vector<const Diagnostic*>* applied = nullptr);
 
+/// Does `after` (the text of `before` with fixes applied) parse with more errors, or more expressions a ';' cuts
+/// open, than `before`? Both are parsed on their own, in the same mode. The editor's fix-all (one round of --fix)
+/// is not offered when it does; `rrflint check --fix` compares whole lints instead (run_fix_rounds).
+bool parses_worse(const SourceFile& before, std::string after);
+
 /// What the fix rounds of one machine did (run_fix_rounds), by SD path.
 struct FixRounds {
   std::map<std::string, std::string> original, current;  // the text before the first round, and after the last

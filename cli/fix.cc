@@ -104,6 +104,15 @@ size_t count_of(const std::map<std::string, size_t>& m, const std::string& key) 
 
 }  // namespace
 
+bool parses_worse(const SourceFile& before, std::string after) {
+  auto problems = [](const SourceFile& f) {
+    const ParsedFile p = parse(f, ParseOptions{});
+    return p.errors.size() + p.semicolon_cuts.size();
+  };
+  const SourceFile fixed(0, before.display_path(), before.sd_path(), TextBuffer(std::move(after)));
+  return problems(fixed) > problems(before);
+}
+
 FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOptions& fo,
                          const std::function<bool(FileId)>& allowed,
                          const std::function<void(const std::string& sd_path, const std::string& text)>& set_text,

@@ -770,3 +770,13 @@ TEST_CASE("fix rounds: say when the fixes have not settled after the last round"
   CHECK(g.fixed == 2);
   CHECK(g.settled);
 }
+
+TEST_CASE("fix rounds: the editor's fix-all is checked the same way (parses_worse)", "[cli][fix]") {
+  const SourceFile clean(0, "config.g", "/sys/config.g", TextBuffer(std::string("G1 X1\n")));
+  CHECK(cli::parses_worse(clean, "G1 X{1\n"));
+  CHECK(cli::parses_worse(clean, "G1 X{global.a ; b }\n"));  // an expression a ';' cuts open
+  CHECK_FALSE(cli::parses_worse(clean, "G1 X2\n"));
+  const SourceFile broken(0, "config.g", "/sys/config.g", TextBuffer(std::string("G1 X{1\nM80\n")));
+  CHECK_FALSE(cli::parses_worse(broken, "G1 X{1\nM81\n"));  // no worse than it was
+  CHECK_FALSE(cli::parses_worse(broken, "G1 X1\nM81\n"));
+}

@@ -2,7 +2,8 @@
 // finding's fix as a `quickfix`, and a suppression comment on its line or for its whole file, written by the same
 // code as `rrflint check --add-suppressions` (lint/engine/suppress.h); and `source.fixAll.rrflint`: every safe fix of
 // the document at once, picked as `rrflint check --fix` picks them in one round (cli::apply_fixes: whole fixes,
-// never two that overlap; a fix that reaches into another file is left out), as one edit of the part that changes.
+// never two that overlap; a fix that reaches into another file is left out), as one edit of the part that changes,
+// and not offered when it would leave the file with more parse errors than it has (cli::parses_worse).
 #include <fmt/format.h>
 
 #include "cli/server/model_at.h"
@@ -43,6 +44,8 @@ std::optional<json> fix_all(const Snapshot& s, FileId file, const std::string& u
   auto it = texts.find(file);
   if (n == 0 || it == texts.end()) return std::nullopt;
   const SourceFile& f = s.sm.get(file);
+  // A fix that made a syntax error would be a bug in a rule: the action is then not offered at all.
+  if (cli::parses_worse(f, it->second)) return std::nullopt;
   const std::string_view before = f.text(), after = it->second;
   size_t head = 0, tail = 0;  // the bytes that stay at the start and at the end
   while (head < before.size() && head < after.size() && before[head] == after[head]) ++head;
