@@ -85,7 +85,7 @@ void scan(const FileContext& cx, Span s, Sink& out) {
     out.report(kMeta, cx.at(Span{first, first + 2}),
                fmt::format("apostrophe before '{}' in a quoted string: RRF drops it and lower-cases the letter, so "
                            "\"{}\" reads as \"{}\" (write '''' for an apostrophe)",
-                           t[first + 1], lex::clip(word), lex::clip(unquote(fmt::format("\"{}\"", word)))))
+                           t[first + 1], clip(word), clip(unquote(fmt::format("\"{}\"", word)))))
         .fix(std::move(fix));
   }
 }

@@ -82,7 +82,7 @@ void check(const NodeContext& cx, Sink& out) {
       continue;
     }
     const NodeId later = later_creation(cx, L);
-    std::string_view code = pf.text(c.word);
+    const std::string code = clip(pf.text(c.word));
     if (later != kNoNode && (c.is('M', 208) || c.is('G', 31)) && !cx.graph.nodes[later].maybe &&
         tools::inside_m501(cx.graph, cx.id))
       continue;  // a line M500 wrote, run by an M501 before the M584: a note of m501-too-early's finding
@@ -91,12 +91,12 @@ void check(const NodeContext& cx, Sink& out) {
     if (later != kNoNode) {
       out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {} before 'M584' creates it: RRF ignores '{}' without a message", code,
-                             axis, pf.text(p.span)))
+                             axis, clip(pf.text(p.span))))
           .note(cx.where(later), fmt::format("axis {} is created here", axis));
     } else {
       out.report(kMeta, cx.at(p.span),
                  fmt::format("'{}' sets axis {}, but no M584 creates axis {}: RRF ignores '{}' without a message", code,
-                             axis, axis, pf.text(p.span)));
+                             axis, axis, clip(pf.text(p.span))));
     }
   }
 }

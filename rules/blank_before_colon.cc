@@ -71,8 +71,8 @@ void check(const FileContext& cx, Sink& out) {
       const std::string letter = p.letter >= 'a' ? fmt::format("'{}", p.letter) : std::string(1, p.letter);
       out.report(kMeta, cx.at(Span{first.begin, first.end + 1}),
                  fmt::format("blank before ':' ends the list: RRF reads '{}{}' and ignores '{}'", letter,
-                             t.substr(p.value.begin, first.begin - p.value.begin),
-                             lex::clip(t.substr(first.end, p.value.end - first.end))))
+                             clip(t.substr(p.value.begin, first.begin - p.value.begin)),
+                             clip(t.substr(first.end, p.value.end - first.end))))
           .fix(std::move(fix));
     }
   }

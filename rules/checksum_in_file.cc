@@ -49,7 +49,7 @@ void check(const FileContext& cx, Sink& out) {
     const uint32_t n = lex::indentation(pf, line).end;  // the 'N'
     uint32_t ne = n + 1;
     while (ne < line.span.end && lex::is_digit(t[ne])) ++ne;
-    const std::string_view number = t.substr(n, ne - n);
+    const std::string number = clip(t.substr(n, ne - n));
     if (!line.checksum) {
       out.report(kMeta, cx.at(Span{n, ne}),
                  fmt::format("line number '{}' in a file: RRF reports errors with this number instead of the real "
@@ -80,7 +80,7 @@ void check(const FileContext& cx, Sink& out) {
       verdict = fmt::format("a checksum of {} digits is never valid, so RRF silently drops this line", digits);
     }
     out.report(kMeta, cx.at(Span{n, ne}),
-               fmt::format("line number '{}' and checksum '{}' in a file: {}", number, sum, verdict))
+               fmt::format("line number '{}' and checksum '{}' in a file: {}", number, clip(sum), verdict))
         .note(cx.at(Span{star, se}), "the checksum");
   }
 }

@@ -82,15 +82,15 @@ void check(const FileContext& cx, Sink& out) {
     const uint32_t line0 = src.line_of(line.span.begin);
     std::string terminator(src.terminator(line0));
     if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
-    Fix fix = Fix::unsafe(fmt::format("move '{}' to a line of its own", lex::clip(pf.text(rest), 30)),
+    Fix fix = Fix::unsafe(fmt::format("move '{}' to a line of its own", clip(pf.text(rest), 30)),
                           Edit::replace(cx.at(Span{c.span.end, next.span.begin}),
                                         terminator + std::string(pf.text(lex::indentation(pf, line)))));
-    const std::string why =
-        c.letter == 'T'
-            ? std::string("may not be executed: a 'T' command must be alone on its line")
-            : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line", lex::word(pf, c));
+    const std::string why = c.letter == 'T'
+                                ? std::string("may not be executed: a 'T' command must be alone on its line")
+                                : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
+                                              clip(lex::word(pf, c)));
     out.report(kMeta, cx.at(rest),
-               fmt::format("'{}' after '{}' on the same line {}", lex::clip(pf.text(rest), 30), lex::word(pf, c), why))
+               fmt::format("'{}' after '{}' on the same line {}", clip(pf.text(rest), 30), clip(lex::word(pf, c)), why))
         .fix(std::move(fix));
   }
 }

@@ -83,7 +83,7 @@ void report(const NodeContext& cx, Sink& out, const Param& p, char L, NodeId m, 
   out.report(kMeta, cx.at(p.span),
              fmt::format("'{}' sets {} before a later 'M584' adds {} to {}: RRF sends '{}' only to the drivers mapped "
                          "now, so {} (send it after the M584)",
-                         pf.text(c.word), who, drivers, L == 'E' ? "them" : "it", lex::clip(pf.text(p.span)), what))
+                         pf.text(c.word), who, drivers, L == 'E' ? "them" : "it", clip(pf.text(p.span)), what))
       .note(cx.where(m), fmt::format("{} {} {} here", who, L == 'E' ? "get" : "gets", drivers));
 }
 

@@ -80,7 +80,7 @@ void check(const FileContext& cx, Sink& out) {
       Report r =
           out.report(kMeta, cx.at(p.span),
                      fmt::format("'{}' is ignored: '{}' already has '{}', and RRF uses the first '{}'",
-                                 lex::clip(pf.text(p.span)), lex::word(pf, c), lex::clip(pf.text(first->span)), name));
+                                 clip(pf.text(p.span)), clip(lex::word(pf, c)), clip(pf.text(first->span)), name));
       r.note(cx.at(first->span), fmt::format("the first '{}' is here", name));
     }
   }

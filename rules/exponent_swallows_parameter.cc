@@ -72,7 +72,7 @@ void check(const FileContext& cx, Sink& out) {
       out.report(kMeta, cx.at(Span{at, e}),
                  fmt::format("'{}' straight after the number is read as an exponent of {}'s value '{}', not as an "
                              "'E' parameter: RRF sets no E value here (SBC mode reads one)",
-                             t.substr(at, e - at), letter, t.substr(p.value.begin, at - p.value.begin)))
+                             clip(t.substr(at, e - at)), letter, clip(t.substr(p.value.begin, at - p.value.begin))))
           .fix(std::move(fix));
     }
   }

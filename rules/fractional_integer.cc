@@ -110,14 +110,14 @@ void check_command(const FileContext& cx, const Command& c, std::string_view let
         out.report(kMeta, cx.at(items[i]),
                    fmt::format("'{}{}' in '{}': RRF reads {} as a whole number, uses {} and drops the fraction "
                                "silently",
-                               letter, item, lex::word(pf, c), letter, kept));
+                               letter, item, clip(lex::word(pf, c)), letter, kept));
       } else {
         const Span rest{items[i].begin + static_cast<uint32_t>(dot), p->value.end};
         out.report(
             kMeta, cx.at(items[i]),
             fmt::format("'{}' in the list '{}{}' of '{}': RRF reads whole numbers, uses {} and ends the "
                         "list at the '.', so '{}' is ignored",
-                        item, letter, lex::clip(pf.text(p->value)), lex::word(pf, c), kept, lex::clip(pf.text(rest))));
+                        item, letter, clip(pf.text(p->value)), clip(lex::word(pf, c)), kept, clip(pf.text(rest))));
       }
       break;  // RRF stops reading the parameter at the first '.'
     }
@@ -129,9 +129,9 @@ void check(const FileContext& cx, Sink& out) {
   for (const uint32_t i : pf.with_code('T', -1)) {
     const Command& c = pf.commands[i];
     if (c.fraction > 0 && c.has_number)
-      out.report(
-          kMeta, cx.at(c.word),
-          fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", lex::word(pf, c), c.number));
+      out.report(kMeta, cx.at(c.word),
+                 fmt::format("'{}' selects tool {}: RRF ignores the fraction of a tool number", clip(lex::word(pf, c)),
+                             c.number));
   }
   for (const IntParam& ip : kIntParams)
     for (const uint32_t i : pf.with_code(ip.letter, ip.number)) check_command(cx, pf.commands[i], ip.params, out);

@@ -99,7 +99,7 @@ void check(const NodeContext& cx, Sink& out) {
         m->z.origin != kNoNode ? tools::command_at(cx.machine, cx.graph, m->z.origin) : tools::NodeCommand{};
     if (origin.is('G', 10))
       if (ParamRef p = origin.pf->find(*origin.c, 'Z'); p && !is_unknown_value(*p) && p->kind == ValueKind::Number)
-        value = std::string(origin.pf->text(p->value));
+        value = clip(origin.pf->text(p->value));
     why = fmt::format("{}", value.empty() ? fmt::format("{:g}", m->z.value) : value);
   }
   Report r = out.report(kMeta, cx.at(c.span),

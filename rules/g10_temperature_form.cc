@@ -97,8 +97,9 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
     if (p) m568 += " " + std::string(pf.text(p->span));
   const std::string why =
       a == Applicability::Safe ? std::string() : fmt::format(" if the firmware is RRF {} or later", floor_text(needs));
-  Fix fix = others ? Fix::safe(fmt::format("move the temperatures to '{}'{}", m568, why))
-                   : Fix::safe(fmt::format("replace with '{}'{}", m568, why), Edit::replace(cx.at(c.span), m568));
+  Fix fix =
+      others ? Fix::safe(fmt::format("move the temperatures to '{}'{}", clip(m568, 100), why))
+             : Fix::safe(fmt::format("replace with '{}'{}", clip(m568, 100), why), Edit::replace(cx.at(c.span), m568));
   fix.applicability = a;
   if (!others) return fix;
   // Delete each of R and S with the blanks before it.
@@ -127,7 +128,7 @@ void check(const FileContext& cx, Sink& out) {
     if (!pf.find(c, 'R') && !pf.find(c, 'S')) continue;
     if (g10_form(pf, c, nullptr, cx.target.version) != G10Form::Tool) continue;
     auto P = get_int(pf, c, 'P');
-    const std::string tool = P.present() ? fmt::format("tool {}", pf.text(P.param->value)) : "the current tool";
+    const std::string tool = P.present() ? fmt::format("tool {}", clip(pf.text(P.param->value))) : "the current tool";
     Report r = out.report(kMeta, cx.at(c.span),
                           fmt::format("{} sets {}'s temperatures with G10: from RRF 3.3 'M568' sets them, and the "
                                       "temperature form of G10 may be removed",

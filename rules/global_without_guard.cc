@@ -74,7 +74,7 @@ void check_file(const FileUnit& fu, Sink& out) {
       out.report(kMeta, Location{fu.source->id(), l.code},
                  fmt::format("'global {}' has no 'exists(global.{})' guard: when config.g runs again (M502, M98 "
                              "P\"config.g\") it fails with 'variable already exists' and aborts the rest of config.g",
-                             pf.text(l.meta_name), pf.text(l.meta_name)));
+                             clip(pf.text(l.meta_name)), clip(pf.text(l.meta_name))));
     const bool opener = l.meta == MetaKind::If || l.meta == MetaKind::Elif || l.meta == MetaKind::While;
     const bool tests = (opener && pf.text(l.meta_arg).find("exists(global.") != std::string_view::npos) ||
                        ((l.meta == MetaKind::Elif || l.meta == MetaKind::Else) && chain_tests);

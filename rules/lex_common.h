@@ -27,12 +27,6 @@ inline bool is_raw_text(const Command& c, const Param& p) {
 /// Does span `s` of `t` hold the byte `c`?
 inline bool contains(std::string_view t, Span s, char c) { return span_has(t, s, c); }
 
-/// `s`, cut to `n` characters with "…" for a message.
-inline std::string clip(std::string_view s, size_t n = 40) {
-  if (s.size() <= n) return std::string(s);
-  return std::string(utf8_prefix(s, n)) + "…";
-}
-
 /// The blanks and tabs that indent a line.
 inline Span indentation(const ParsedFile& pf, const Line& line) {
   const std::string_view t = pf.source->text();

@@ -122,7 +122,7 @@ void check_letter(const NodeContext& cx, Sink& out, const Param& p) {
   out.report(kMeta, cx.at(p.span),
              fmt::format("'{}' for {} has no effect: the later 'M350' changes its microstepping from x{} to x{}, "
                          "which rescales it{}, and a later 'M92' then replaces it",
-                         lex::clip(cx.parsed().text(p.span)), who, r.before, r.after, rescaled))
+                         clip(cx.parsed().text(p.span)), who, r.before, r.after, rescaled))
       .note(cx.where(r.m350), fmt::format("the microstepping of {} changes here", who))
       .note(cx.where(r.again), fmt::format("{} {} steps/mm again here", who, L == 'E' ? "get their" : "gets its"));
 }

@@ -119,10 +119,12 @@ void check(const EndContext& cx, Sink& out) {
     if (guarded_by_fileexists(pf, event_command(cx, e).line, cx.options.sys_dir, to_lower(e.path))) continue;
     std::string hint;
     const std::string lower = to_lower(e.path);
-    if (lower.starts_with("/sys/macros/")) hint = fmt::format(": did you mean '0:/macros/{}'?", e.path.substr(12));
-    out.report(
-        kMeta, event_path_loc(cx, e),
-        fmt::format("macro file '{}' does not exist: RRF warns 'Macro file not found' and carries on{}", e.path, hint));
+    // A path is quoted whole up to 120 bytes (a long path is still one name), cut beyond.
+    if (lower.starts_with("/sys/macros/"))
+      hint = fmt::format(": did you mean '0:/macros/{}'?", clip(e.path.substr(12), 120));
+    out.report(kMeta, event_path_loc(cx, e),
+               fmt::format("macro file '{}' does not exist: RRF warns 'Macro file not found' and carries on{}",
+                           clip(e.path, 120), hint));
   }
 }
 

@@ -209,7 +209,7 @@ void check_device(const NodeContext& cx, Sink& out, const Run& run, NodeId loade
   if (unknown || diff.empty()) return;
   Replaced r;
   for (const char l : diff)
-    r.add(l, fmt::format("{}{}", l, lex::clip(from.pf->text(from.pf->find(*from.c, l)->value))), loaded);
+    r.add(l, fmt::format("{}{}", l, clip(from.pf->text(from.pf->find(*from.c, l)->value))), loaded);
   report(cx, out, run, r, what, advice);
 }
 

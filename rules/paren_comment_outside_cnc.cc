@@ -94,7 +94,7 @@ void check(const FileContext& cx, Sink& out) {
         Report r = out.report(kMeta, cx.at(g),
                               fmt::format("'{}' is not a comment outside CNC mode: standalone RRF reads its letters "
                                           "as parameters (SBC mode drops it); use ';' for a comment",
-                                          lex::clip(pf.text(g))));
+                                          clip(pf.text(g))));
         const bool last = g.end == line.code.end && g.end > g.begin + 1 && t[g.end - 1] == ')';
         if (last && line.comment.empty() && &g == &groups.back()) {
           std::string_view inner = t.substr(g.begin + 1, g.end - g.begin - 2);

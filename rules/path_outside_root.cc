@@ -40,7 +40,7 @@ void check(const EndContext& cx, Sink& out) {
   for (const GraphEvent& e : cx.graph.events) {
     if (e.kind != GraphEvent::Kind::OutsideRoot || !event_is_m98(cx, e)) continue;
     out.report(kMeta, event_path_loc(cx, e),
-               fmt::format("'{}' climbs above the root of the SD card: there is no such file", e.path));
+               fmt::format("'{}' climbs above the root of the SD card: there is no such file", clip(e.path, 120)));
   }
 }
 

@@ -54,7 +54,7 @@ void check(const FileContext& cx, Sink& out) {
     out.report(kMeta, cx.at(Span{semi, semi + 1}),
                fmt::format("';' inside an expression starts a comment: RRF reads only '{}' and fails with an "
                            "expression error{}",
-                           lex::clip(pf.text(cut)), meta ? ", which aborts the rest of the file" : ""))
+                           clip(pf.text(cut)), meta ? ", which aborts the rest of the file" : ""))
         .note(cx.at(Span{cut.begin, cut.begin + 1}), "the expression opens here");
   }
 }

@@ -63,7 +63,7 @@ void check_string(const FileContext& cx, const Command& c, const std::vector<Par
     out.report(kMeta, cx.at(at),
                fmt::format("text right after the closing quote: RRF ends the string at this quote and ignores the rest "
                            "('{}'); write \"\" for a quote inside a string",
-                           lex::clip(t.substr(v.end, c.span.end - v.end))));
+                           clip(t.substr(v.end, c.span.end - v.end))));
     return;
   }
   // The parameters glued to the string (no blank before them) are the text RRF reads after it.
@@ -84,7 +84,7 @@ void check_string(const FileContext& cx, const Command& c, const std::vector<Par
       kMeta, cx.at(at),
       fmt::format("text right after the closing quote: RRF ends the string {} at this quote and reads '{}' as "
                   "{}; write \"\" for a quote inside a string",
-                  lex::clip(t.substr(v.begin, v.size())), lex::clip(t.substr(v.end, glued_end - v.end)),
+                  clip(t.substr(v.begin, v.size())), clip(t.substr(v.end, glued_end - v.end)),
                   list.empty() ? "more text" : fmt::format("parameter{} {}", letters.size() > 1 ? "s" : "", list)));
 }
 

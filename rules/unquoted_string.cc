@@ -100,7 +100,7 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
     Report r =
         out.report(kMeta, cx.at(Span{p.span.begin, b + 1}),
                    fmt::format("blank between '{}' and the {} {} in '{}': {}", letter,
-                               t[b] == '"' ? "quoted" : "expression for the", sp.what, lex::word(pf, c),
+                               t[b] == '"' ? "quoted" : "expression for the", sp.what, clip(lex::word(pf, c)),
                                quotes_needed ? fmt::format("RRF looks for the {} right after the letter and fails with "
                                                            "'expected a string expression'",
                                                            t[b] == '"' ? "quote" : "'{'")
@@ -131,11 +131,11 @@ void check_param(const FileContext& cx, const Command& c, const Param& p, const 
                                           "RRF 3 needs quotes here and rejects the command ('expected a string "
                                           "expression')");
   Report r = out.report(kMeta, cx.at(Span{p.span.begin, e}),
-                        fmt::format("unquoted {} '{}' in '{}': {}", sp.what, lex::clip(text), lex::word(pf, c), why));
+                        fmt::format("unquoted {} '{}' in '{}': {}", sp.what, clip(text), clip(lex::word(pf, c)), why));
   // Not when the quoted text would not parse: a control byte ends a quoted string (RRF rejects it there).
   const std::string quoted = fmt::format("\"{}\"", text);
   if (tools::edit_parses(pf, c.line, Span{after, e}, quoted, c.cnc))
-    r.fix(Fix::unsafe(fmt::format("quote '{}'", text), Edit::replace(cx.at(Span{after, e}), quoted)));
+    r.fix(Fix::unsafe(fmt::format("quote '{}'", clip(text)), Edit::replace(cx.at(Span{after, e}), quoted)));
 }
 
 // Is the target certainly one that needs quotes for this command? An unquoted M98 file name is itself a sign of

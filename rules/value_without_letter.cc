@@ -131,7 +131,7 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
     out.report(kMeta, cx.at(stray),
                fmt::format("'{}' has no parameter letter: RRF reads '{}' and ignores it (write the letter it is "
                            "meant for)",
-                           lex::clip(text), lex::clip(before)));
+                           clip(text), clip(before)));
   }
 }
 

@@ -780,3 +780,67 @@ TEST_CASE("fix rounds: the editor's fix-all is checked the same way (parses_wors
   CHECK_FALSE(cli::parses_worse(broken, "G1 X{1\nM81\n"));  // no worse than it was
   CHECK_FALSE(cli::parses_worse(broken, "G1 X1\nM81\n"));
 }
+
+namespace {
+// `text` with every word of 4 or more letters, digits, '_' and '.' (names, paths, numbers after a letter) and
+// every quoted string made `n` bytes long by repeating it.
+std::string lengthened(std::string_view text, size_t n) {
+  auto word_byte = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.'; };
+  std::string out;
+  for (size_t i = 0; i < text.size();) {
+    size_t e = i;
+    if (text[i] == '"') {
+      e = text.find_first_of("\"\n", i + 1);
+      if (e == std::string_view::npos || text[e] != '"' || e == i + 1) {
+        out += text[i++];
+        continue;
+      }
+      const std::string_view inner = text.substr(i + 1, e - i - 1);
+      out += '"';
+      while (out.size() < n + i) out += inner;  // about n bytes
+      out += '"';
+      i = e + 1;
+      continue;
+    }
+    while (e < text.size() && word_byte(text[e])) ++e;
+    if (e - i >= 4) {
+      const std::string_view w = text.substr(i, e - i);
+      for (size_t k = 0; k < n; k += w.size()) out += w;
+      i = e;
+    } else if (e > i) {
+      out += text.substr(i, e - i);
+      i = e;
+    } else {
+      out += text[i++];
+    }
+  }
+  return out;
+}
+}  // namespace
+
+TEST_CASE("a finding quotes a long word short: every fixture with its words and strings 3,000 bytes long",
+          "[robustness]") {
+  // Found by lint runs over such files: eight rules quoted a command word, a value, a path or a name whole (a
+  // 60,000-byte message for a long global name; a fix titled with 6,000 bytes). What a message quotes from the
+  // file is cut (clip(): 40 bytes, 120 for a path).
+  size_t files = 0, findings = 0;
+  for (const auto& e : fs::recursive_directory_iterator(fs::path(RRFLINT_SOURCE_DIR) / "fixtures")) {
+    if (!e.is_regular_file() || e.path().extension() != ".g") continue;
+    std::ifstream in(e.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    MemoryReader reader;
+    reader.add("/sys/config.g", lengthened(text, 3000));
+    SourceManager sm;
+    const MachineResult r = lint_machine(sm, reader, builtin_rules(), LintOptions{});
+    ++files;
+    for (const Diagnostic& d : r.diagnostics) {
+      ++findings;
+      INFO(e.path().string() << ": " << d.code << ": " << d.message.substr(0, 200));
+      CHECK(d.message.size() <= 400);
+      for (const Note& n : d.notes) CHECK(n.message.size() <= 400);
+      if (d.fix) CHECK(d.fix->title.size() <= 200);
+    }
+  }
+  CHECK(files > 300);
+  CHECK(findings > 1000);
+}

@@ -217,6 +217,27 @@ TEST_CASE("RRF901: unknown names (with a suggestion), bad keywords, missing list
   CHECK(f.slice(r->result.diagnostics[1].loc.span) == "unknown-comand");
 }
 
+TEST_CASE("RRF901: a long word is quoted short, and costs no more than its length", "[suppress]") {
+  // A 50,000-byte "rule name" was compared with every rule's name letter by letter for a suggestion (20 of them
+  // took 2.4 s) and quoted whole in the message. Names whose lengths differ too much are no longer compared.
+  const std::string word(50000, 'a');
+  auto r = lint("G1 X0 ; rrflint: disable=" + word + "\n; rrflint: " + word + "=all\n");
+  std::vector<std::string> messages;
+  for (const Diagnostic& d : r->result.diagnostics)
+    if (d.code == "RRF901") messages.push_back(d.message);
+  CHECK(messages == V{"unknown rule '" + std::string(40, 'a') + "…' in suppression comment",
+                      "unknown suppression directive '" + std::string(40, 'a') +
+                          "…': use disable, disable-next-line, disable-file or enable"});
+  // A near miss of about the same length is still suggested, a longer or shorter one too when close enough.
+  auto near = lint("M9999 ; rrflint: disable=unknown-commands\nM9998 ; rrflint: disable=unknown-comm\n");
+  messages.clear();
+  for (const Diagnostic& d : near->result.diagnostics)
+    if (d.code == "RRF901") messages.push_back(d.message);
+  CHECK(messages ==
+        V{"unknown rule 'unknown-commands' in suppression comment; did you mean 'unknown-command' (RRF101)?",
+          "unknown rule 'unknown-comm' in suppression comment; did you mean 'unknown-command' (RRF101)?"});
+}
+
 TEST_CASE("comments that merely mention rrflint are not directives", "[suppress]") {
   auto r = lint(
       "; rrflint-options: --firmware 3.5\n"

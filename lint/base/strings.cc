@@ -20,4 +20,9 @@ size_t utf8_start(std::string_view s, size_t at, size_t floor) {
   return at;
 }
 
+std::string clip(std::string_view s, size_t n) {
+  if (s.size() <= n) return std::string(s);
+  return std::string(utf8_prefix(s, n)) + "…";
+}
+
 }  // namespace rrflint

@@ -17,4 +17,8 @@ std::string_view utf8_prefix(std::string_view s, size_t n);
 /// `floor`): a text quoted from a byte position (where a parse stopped) never starts in part of a character.
 size_t utf8_start(std::string_view s, size_t at, size_t floor = 0);
 
+/// `s` for a message: at most `n` bytes of it, cut at a character, with "…" when it was cut. A user's text quoted
+/// in a finding (a 50,000-byte word is still one word) stays short.
+std::string clip(std::string_view s, size_t n = 40);
+
 }  // namespace rrflint

@@ -69,7 +69,7 @@ bool parse_keyword(std::string_view text, uint32_t end, uint32_t& p, Directive& 
                            : fmt::format(
                                  "unknown suppression directive '{}': use disable, disable-next-line, "
                                  "disable-file or enable",
-                                 text.substr(kw_begin, p - kw_begin));
+                                 clip(text.substr(kw_begin, p - kw_begin)));
     return false;
   }
   return true;
@@ -89,7 +89,7 @@ void parse_without_list(std::string_view text, uint32_t end, uint32_t p, Directi
   } else {
     d.bad_keyword = true;
     d.problem = fmt::format("expected '=' and a rule list after '{}'",
-                            text.substr(d.keyword.begin, d.keyword.end - d.keyword.begin));
+                            clip(text.substr(d.keyword.begin, d.keyword.end - d.keyword.begin)));
   }
 }
 

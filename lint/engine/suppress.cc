@@ -33,16 +33,21 @@ std::string suggestion(std::string_view written, const RuleSet& rules) {
   const std::string w = to_lower(written);
   // A code-like word ("RRF999") has no meaningful near miss: codes one digit apart are unrelated rules.
   if (w.size() >= 4 && w.starts_with("rrf") && std::isdigit(static_cast<unsigned char>(w[3]))) return "";
+  // A name farther than this is no near miss. Names whose lengths differ by more cannot be within it, and are not
+  // compared: a long word (a 50,000-byte "rule name") then costs nothing instead of its length times every name's.
+  const size_t limit = std::max<size_t>(2, w.size() / 4);
   const Rule* best = nullptr;
   size_t best_d = SIZE_MAX;
   for (const Rule* r : rules.all()) {
-    const size_t d = edit_distance(w, to_lower(r->meta.name));
+    const std::string name = to_lower(r->meta.name);
+    if ((name.size() > w.size() ? name.size() - w.size() : w.size() - name.size()) > limit) continue;
+    const size_t d = edit_distance(w, name);
     if (d < best_d) {
       best_d = d;
       best = r;
     }
   }
-  if (!best || best_d > std::max<size_t>(2, w.size() / 4)) return "";
+  if (!best || best_d > limit) return "";
   return fmt::format("; did you mean '{}' ({})?", best->meta.name, best->meta.code);
 }
 
@@ -170,15 +175,16 @@ class SuppressionPass {
           continue;
         }
         if (d.entries.empty()) {
-          found.push_back(make(unknown_rule, *fd.unit, d.span,
-                               fmt::format("'{}=' names no rule", text.substr(d.keyword.begin, d.keyword.size()))));
+          found.push_back(
+              make(unknown_rule, *fd.unit, d.span,
+                   fmt::format("'{}=' names no rule", clip(text.substr(d.keyword.begin, d.keyword.size())))));
           continue;
         }
         for (const SuppressionEntry& e : d.entries)
           if (!e.rule && !e.all && e.prefix.empty())
-            found.push_back(
-                make(unknown_rule, *fd.unit, e.span,
-                     fmt::format("unknown rule '{}' in suppression comment{}", e.text, suggestion(e.text, rules_))));
+            found.push_back(make(
+                unknown_rule, *fd.unit, e.span,
+                fmt::format("unknown rule '{}' in suppression comment{}", clip(e.text), suggestion(e.text, rules_))));
       }
     }
     filter(found);

@@ -192,11 +192,6 @@ class ExprSyntax {
 
 }  // namespace
 
-// `s`, cut to 40 characters for a message.
-std::string clip(std::string_view s) {
-  return s.size() <= 40 ? std::string(s) : fmt::format("{}…", utf8_prefix(s, 40));
-}
-
 // "'…'" or "the end": where an expression error is, for a message.
 std::string error_place(std::string_view t, uint32_t at, uint32_t e) {
   if (at >= e) return "at the end";

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "lint/base/strings.h"  // clip
 #include "lint/syntax/byte_classes.h"
 #include "lint/syntax/parser.h"
 
@@ -38,9 +39,7 @@ inline bool unlettered_string(const Command& c) {
   return c.fraction < 0 && takes_unlettered_string(c.letter, c.number);
 }
 
-// RRF's expression grammar (expr_syntax.cc).
-// `s`, cut to 40 characters for a message.
-std::string clip(std::string_view s);
+// RRF's expression grammar (expr_syntax.cc). clip() is lint/base/strings.h's.
 // "'…'" or "the end": where an expression error is, for a message.
 std::string error_place(std::string_view t, uint32_t at, uint32_t e);
 // Is the {…} group [b, e) (from its '{' to after its '}') a complete expression? `msg` and `at` say why not.
