@@ -158,6 +158,12 @@ struct JobRun {
       gitignore.prefetch(files);
     }
     note_unlinted(job, eff, *r.machine, t);
+    if (r.graph.truncated)
+      warning(
+          fmt::format("{}: the files run to more than {} million commands in all (a macro called many times "
+                      "over, or a very large file): the machine rules followed those only, and say nothing of the "
+                      "rest",
+                      job.title, r.graph.nodes.size() / 1'000'000));
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
       if (reportable(*r.machine->unit(i).source)) ++t.linted;
   }
