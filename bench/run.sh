@@ -7,6 +7,7 @@
 #   P4  peak RSS (/usr/bin/time -v) at 1, 10 and 100 MB: is memory linear in the input?
 #   P5  in-process re-lint of a 300-line config (Google Benchmark, bench/bench_core.cc), target <= 1 ms
 #   P6  the findings-heavy input (../shared/tools/gen-corpus-big.py) at 10, 30, 100 MB, against gcode-parser
+#   P7  hostile shapes (bench/gen_hostile.py): a diamond of macro calls, thousands of tools, huge words, deep nesting
 #
 # Usage: bench/run.sh [--quick]     (--quick: fewer runs, for checking the script itself)
 # Needs: hyperfine, libbenchmark-dev, npm (scripts/setup.sh --bench installs them), python3.
@@ -119,6 +120,17 @@ else
   echo "== P6 skipped: $gen_big not found"
 fi
 
+# P7: hostile shapes (bench/gen_hostile.py): cards no real config looks like, each of which once cost seconds or
+# gigabytes for a megabyte or less. Each should take about what a normal file of its size takes (tens of ms).
+echo "== P7: hostile shapes"
+rm -rf "$out/hostile"
+python3 "$here/gen_hostile.py" "$out/hostile"
+hostile=()
+for shape in diamond tools suppression parens; do
+  hostile+=(-n "rrflint $shape" "${check[*]} $out/hostile/$shape >/dev/null 2>&1")
+done
+hyperfine --warmup 1 --runs "$big_runs" -i --export-json "$out/p7.json" "${hostile[@]}"
+
 echo "== P5 and the core benchmarks (Google Benchmark)"
 "$build/rrflint_bench" --benchmark_repetitions=$((runs > 2 ? 10 : 2)) --benchmark_report_aggregates_only=true \
   --benchmark_out="$out/bench_core.json" --benchmark_out_format=json
@@ -173,6 +185,7 @@ if os.path.exists(p6):
     lines.append(f"\n{b100 / b10:.1f}x input -> {t100 / t10:.1f}x time (target: 10x -> <= 11x); "
                  f"gcode-parser / rrflint on 100 MB: {med['gcode-parser big 100M'] / t100:.1f}x (target >= 15x)")
     lines.append("")
+hf("p7.json", "P7: hostile shapes (bench/gen_hostile.py)")
 bc = os.path.join(out, "bench_core.json")
 if os.path.exists(bc):
     lines += ["## Google Benchmark (bench/bench_core.cc)", "| benchmark | aggregate | real time | cpu time | extra |",

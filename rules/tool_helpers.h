@@ -6,10 +6,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "lint/base/strings.h"
@@ -169,13 +171,35 @@ inline bool runs_again(const NodeContext& cx, NodeId from) {
   return runs_again(cx.graph, cx.self, from, cx.segment().end);
 }
 
+/// Per tool number, the M563 nodes that define it with a known P, in node order. Built once per graph
+/// (Graph::derived): a config of thousands of tools asked for each G10 which of the thousands of M563 after it
+/// comes next, lexing each.
+struct M563ByTool {
+  std::unordered_map<int64_t, std::vector<NodeId>> by_tool;
+};
+inline const M563ByTool& m563_by_tool(const Machine& m, const Graph& g) {
+  return g.derived<M563ByTool>("tools.m563_by_tool", [&] {
+    M563ByTool out;
+    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 563))
+      for (const NodeId id : *ids) {
+        const Node n = g.nodes[id];
+        const ParsedFile& pf = m.unit(n.unit).parsed;
+        if (pf.commands.code(n.index).fraction >= 0) continue;
+        const Command c = pf.commands[n.index];
+        if (!m563_defines(pf, c)) continue;
+        if (auto P = get_int(pf, c, 'P'); P.known()) out.by_tool[P.value].push_back(id);
+      }
+    return out;
+  });
+}
+
 /// The later M563 in this segment that defines tool n.
 inline NodeId later_m563(const NodeContext& cx, int n) {
-  return find_later(cx, 'M', 563, [&](const NodeCommand& nc) {
-    if (!m563_defines(*nc.pf, *nc.c)) return false;
-    auto P = get_int(*nc.pf, *nc.c, 'P');
-    return P.known() && P.value == n;
-  });
+  const M563ByTool& index = m563_by_tool(cx.machine, cx.graph);
+  auto it = index.by_tool.find(n);
+  if (it == index.by_tool.end()) return kNoNode;
+  auto next = std::upper_bound(it->second.begin(), it->second.end(), cx.id);
+  return next != it->second.end() && *next < cx.segment().end ? *next : kNoNode;
 }
 
 /// The later M584 in this segment that names axis `letter`.
@@ -224,10 +248,24 @@ inline std::string quote(const ParsedFile& pf, const Command& c) {
 /// The G10 and M568 commands for tool n between the command at `cx` and node `to`, in order; nullopt when an M563
 /// for tool n, or a G10, M563 or M568 whose tool is not known, lies between (nothing may move past it).
 inline std::optional<std::vector<NodeId>> tool_lines_between(const NodeContext& cx, NodeId to, int n) {
+  // The G10, M563 and M568 nodes between, in order, from the code index (not a walk of every node between). More
+  // than kMaxBetween of them: nullopt, as for an unknown tool (a fix across hundreds of other tools' lines is no
+  // plain move, and asking each of them cost a config of thousands of tools seconds).
+  constexpr size_t kMaxBetween = 256;
+  std::vector<NodeId> between;
+  bool too_many = false;
+  auto collect = [&](NodeId id, const NodeCommand&) {
+    between.push_back(id);
+    too_many = between.size() > kMaxBetween;
+    return too_many;
+  };
+  each_code_node(cx, cx.id + 1, to, 'G', 10, collect);
+  if (!too_many) each_code_node(cx, cx.id + 1, to, 'M', {563, 568}, collect);
+  if (too_many) return std::nullopt;
+  std::sort(between.begin(), between.end());
   std::vector<NodeId> lines;
-  for (NodeId i = cx.id + 1; i < to; ++i) {
+  for (const NodeId i : between) {
     const NodeCommand nc = command_at(cx.machine, cx.graph, i);
-    if (!nc.is('G', 10) && !nc.is('M', 563) && !nc.is('M', 568)) continue;
     auto P = get_int(*nc.pf, *nc.c, 'P');
     if (!P.known() || (P.value == n && nc.is('M', 563))) return std::nullopt;
     if (P.value == n) lines.push_back(i);

@@ -844,3 +844,25 @@ TEST_CASE("a finding quotes a long word short: every fixture with its words and 
   CHECK(files > 300);
   CHECK(findings > 1000);
 }
+
+TEST_CASE("RRF301's fix gives up past 256 other tools' lines between the G10 and its M563", "[robustness][fix]") {
+  // A config of thousands of tools asked, for each G10 before its M563, every node between and every later M563
+  // (seconds for 40,000 lines). The M563s are now indexed by tool, and the lines between found from the code
+  // index; more than 256 of them between, and the move is not offered (the finding stands).
+  auto config_with = [](int others) {
+    std::string config = "M584 X0 Y1 Z2 E3\nG10 P7 X1 Y1 Z0\n";
+    for (int i = 0; i < others; ++i) config += fmt::format("M563 P{} D0\n", i % 6);
+    return config + "M563 P7 D0\n";
+  };
+  SourceManager sm;
+  MachineResult r = lint_one_rule(sm, config_with(256), "RRF301");
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].message.find("does not exist yet") != std::string::npos);
+  REQUIRE(r.diagnostics[0].fix);
+  CHECK(r.diagnostics[0].fix->title == "move the line after the 'M563 P7'");
+  SourceManager sm2;
+  r = lint_one_rule(sm2, config_with(257), "RRF301");
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].message.find("does not exist yet") != std::string::npos);
+  CHECK_FALSE(r.diagnostics[0].fix);
+}

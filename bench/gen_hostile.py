@@ -1,0 +1,44 @@
+#!/usr/bin/env python3
+"""Writes SD cards of shapes no real config has but a hostile or broken one may, for bench/run.sh (P7). Each once
+cost far more than its size (bench/RESULTS.md, "Hostile shapes"): the time must stay about that of a normal file of
+the same size.
+
+  diamond      20 calls of the next macro in each of 9 macros: the boot sequence runs to millions of commands (the
+               graph stops at its node limit) and repeats every too-deep call millions of times
+  tools        20,000 M563 and G10 lines over 1,000 tool numbers: each G10 before its tool's next M563
+  suppression  20 suppression comments naming 50,000-byte rules
+  parens       100,000 nested parentheses, braces and '!' in expressions
+
+Usage: gen_hostile.py OUT_DIR   (writes OUT_DIR/<shape>/sys/...)
+"""
+import os
+import sys
+
+
+def card(out, name, files):
+    for path, text in files.items():
+        p = os.path.join(out, name, "sys", path)
+        os.makedirs(os.path.dirname(p), exist_ok=True)
+        with open(p, "w") as f:
+            f.write(text)
+
+
+def main():
+    out = sys.argv[1]
+    depth, width = 9, 20
+    diamond = {"config.g": "M584 X0 Y1 Z2\n" + 'M98 P"m0.g"\n' * width}
+    for i in range(depth):
+        diamond[f"m{i}.g"] = "G1 X1\n" + f'M98 P"m{i + 1}.g"\n' * width
+    diamond[f"m{depth}.g"] = "G10 P0 X1\n"
+    card(out, "diamond", diamond)
+    card(out, "tools", {"config.g": "M584 X0 Y1 Z2 U3 E4:5\n" + "".join(
+        f"M563 P{i % 1000} D0 H1 X0:3 F0\nG10 P{i % 1000} X1 Y1 Z0\n" for i in range(20000))})
+    word = "a" * 50000
+    card(out, "suppression", {"config.g": "".join(f"G28 ; rrflint: disable={word}{i}\n" for i in range(20))})
+    n = 100000
+    card(out, "parens", {"config.g": "G1 X{" + "(" * n + "1" + ")" * n + "}\nG1 X" + "{" * n + "1" + "}" * n +
+                         "\nif " + "!" * n + "true\n  G1 X1\n"})
+
+
+if __name__ == "__main__":
+    main()
