@@ -7,6 +7,8 @@ the same size.
                graph stops at its node limit) and repeats every too-deep call millions of times
   tools        20,000 M563 and G10 lines over 1,000 tool numbers: each G10 before its tool's next M563
   suppression  20 suppression comments naming 50,000-byte rules
+  g10s         20,000 G10 lines of one tool without Z, each with a same-line suppression comment
+  ranges       20,000 suppression ranges opened and never closed
   parens       100,000 nested parentheses, braces and '!' in expressions
 
 Usage: gen_hostile.py OUT_DIR   (writes OUT_DIR/<shape>/sys/...)
@@ -35,6 +37,9 @@ def main():
         f"M563 P{i % 1000} D0 H1 X0:3 F0\nG10 P{i % 1000} X1 Y1 Z0\n" for i in range(20000))})
     word = "a" * 50000
     card(out, "suppression", {"config.g": "".join(f"G28 ; rrflint: disable={word}{i}\n" for i in range(20))})
+    card(out, "g10s", {"config.g": "M584 X0 Y1 Z2 E3\nM563 P0 D0\n" + "".join(
+        f"G10 P0 X{i} Y0 ; rrflint: disable=g10-missing-z\n" for i in range(20000))})
+    card(out, "ranges", {"config.g": "".join(f"; rrflint: disable=line-too-long\nG1 X{i}\n" for i in range(20000))})
     n = 100000
     card(out, "parens", {"config.g": "G1 X{" + "(" * n + "1" + ")" * n + "}\nG1 X" + "{" * n + "1" + "}" * n +
                          "\nif " + "!" * n + "true\n  G1 X1\n"})

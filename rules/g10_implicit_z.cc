@@ -1,6 +1,6 @@
 // RRF331 g10-implicit-z: a tool-offset G10 that leaves Z out where Z is provably 0 (opt-in).
 #include "rules/append_fix.h"
-#include "rules/tool_helpers.h"
+#include "rules/missing_z.h"
 
 namespace rrflint {
 namespace {

@@ -1,6 +1,6 @@
 // RRF306 g10-missing-z: a tool-offset G10 without Z where the tool's Z offset may be non-zero.
 #include "rules/append_fix.h"
-#include "rules/tool_helpers.h"
+#include "rules/missing_z.h"
 
 namespace rrflint {
 namespace {

@@ -391,78 +391,12 @@ inline bool inside_m501(const Graph& g, NodeId id) {
   return false;
 }
 
-/// A tool-offset G10 that sets other axes but not Z (RRF306, RRF331): the tool and its Z offset before the line.
-struct MissingZ {
-  int tool = -1;
-  const Tool* t = nullptr;
-  Fact z;
-  bool probed = false;  // loaded by M501 or measured by M585
-};
-
 /// Is this ToolSelect node a `T-1` (deselect, uses no tool)?
 inline bool is_deselect(const Machine& m, const Graph& g, NodeId id) {
   const Node& n = g.nodes[id];
   if (n.call_site == kNoNode) return false;
   NodeCommand nc = command_at(m, g, n.call_site);
   return nc && nc.c->letter == 'T' && !nc.c->number_expr && nc.c->has_number && nc.c->number < 0;
-}
-
-/// Is tool n's Z set again (or the tool re-created) later in this segment before a T selects it?
-inline bool z_set_later(const NodeContext& cx, int n) {
-  // Walks on to the first T that selects tool n (or may: T{…}), or the first M563 / G10 that sets its Z.
-  bool set = false;
-  cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId i, const Node& node) {
-    if (node.kind == NodeKind::ToolSelect)
-      return node.index == static_cast<uint32_t>(n) ||
-             (node.index == kNoToolNumber && !is_deselect(cx.machine, cx.graph, i));
-    if (node.kind != NodeKind::Command) return false;
-    const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
-    const CommandTable::Code code = pf.commands.code(node.index);
-    const bool m563 = code.letter == 'M' && code.number == 563 && code.fraction < 0;
-    const bool g10 = code.letter == 'G' && code.number == 10 && code.fraction < 0;
-    if (!m563 && !g10) return false;
-    const Command c = pf.commands[node.index];
-    auto P = get_int(pf, c, 'P');
-    const bool this_tool = P.present() && (!P.known() || P.value == n);  // an unknown P may be this tool
-    if (m563 && m563_defines(pf, c) && this_tool) set = true;
-    if (g10 && this_tool && pf.find(c, 'Z')) {
-      const G10Form f = g10_form(pf, c, nullptr, cx.state.firmware);  // P is present: never Unknown for axes
-      if (f == G10Form::Tool || f == G10Form::Unknown) set = true;
-    }
-    return set;
-  });
-  return set;
-}
-
-inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
-  if (!cx.is('G', 10) || !cx.certain()) return std::nullopt;
-  const ParsedFile& pf = cx.parsed();
-  const Command& c = cx.command();
-  const MachineState& s = cx.state;
-  if (s.running_m501) return std::nullopt;  // config-override.g: M500 writes only the probed axes, on purpose
-  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return std::nullopt;
-  const ToolRef ref = addressed_tool(pf, c, s);
-  if (!ref.known || ref.number < 0) return std::nullopt;
-  const Tool* t = s.tool(ref.number);
-  if (!t || t->maybe) return std::nullopt;
-  const int z = s.axis_index('Z');
-  if (z < 0 || z >= kMaxAxisSlots || !s.axis_visible(z) || pf.find(c, 'Z')) return std::nullopt;
-  bool other = false;
-  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()) && !other; ++i)
-    other = i != z && pf.find(c, s.axes[static_cast<size_t>(i)].letter) != nullptr;
-  if (!other || z_set_later(cx, ref.number)) return std::nullopt;
-  MissingZ m;
-  m.tool = ref.number;
-  m.t = t;
-  m.z = t->offsets[static_cast<size_t>(z)];
-  m.probed = t->probed[static_cast<size_t>(z)];
-  return m;
-}
-
-/// The fix that appends ` Z<value>` to the G10 at `cx`, right after its last parameter.
-inline Fix append_z(const NodeContext& cx, const std::string& value) {
-  const uint32_t end = cx.command().span.end;
-  return Fix::safe(fmt::format("append 'Z{}'", value), Edit::insert(cx.at(Span{end, end}), " Z" + value));
 }
 
 }  // namespace rrflint::tools

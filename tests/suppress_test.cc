@@ -95,6 +95,21 @@ TEST_CASE("disable-next-line covers the next line with code, past comments and b
   CHECK(r->found() == V{"/sys/config.g:5 RRF101"});
 }
 
+TEST_CASE("ranges inside ranges: a finding is covered by any that holds it, and only those are used", "[suppress]") {
+  // The lookup sorts a code's entries by their first line and keeps the farthest last line so far: a short range
+  // opened after a long one must neither hide the long one (line 7) nor count as used for a finding outside it.
+  auto r = lint(
+      "; rrflint: disable=unknown-command\n"            // 1: a range to the enable on line 6
+      "; rrflint: disable=RRF1\n"                       // 2: a prefix range to the end of the file
+      "; rrflint: disable-next-line=unknown-command\n"  // 3: covers line 4, which has no finding: unused
+      "G1 X0\n"                                         // 4
+      "M9999\n"                                         // 5: covered by 1 and 2
+      "; rrflint: enable=unknown-command\n"             // 6
+      "M9998\n"                                         // 7: covered by 2 only
+      "M9997 ; rrflint: disable=RRF101\n");             // 8: covered by 2 and by itself
+  CHECK(r->found() == V{"/sys/config.g:3 RRF900"});
+}
+
 TEST_CASE("ranges: own-line disable until enable, or to the end of the file", "[suppress]") {
   auto r = lint(
       "M9990\n"

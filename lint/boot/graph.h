@@ -106,6 +106,12 @@ class NodeTable {
     }
     return kNoNode;
   }
+  /// Calls f(id, node) for each node stored whole (every node but a command: Enter, Leave, ToolSelect), in order.
+  template <class F>
+  void each_whole(F f) const {
+    for (size_t r = 0; r < runs_.size(); ++r)
+      if (runs_[r].frame == kFull) f(runs_[r].first, static_cast<const Node&>(decode(r, runs_[r].first)));
+  }
   /// How many entries the table keeps (tests and traces: runs and whole nodes).
   size_t entries() const { return runs_.size(); }
   /// Calls f(first, unit, index, count) for each run of command nodes, in order: nodes [first, first + count) run

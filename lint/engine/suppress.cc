@@ -141,25 +141,51 @@ class SuppressionPass {
   bool on(std::string_view code) const { return on_.count(code) != 0; }
 
   /// Removes the diagnostics a directive covers and marks those directives used.
+  // Removes the findings a directive covers, and marks `used` each entry that covers one. By file and code: the
+  // entries naming the code, sorted by first line with the farthest last line so far, say by a binary search
+  // whether a finding's line is covered; an entry is used when some finding of the code lies in its lines (a
+  // binary search in their sorted lines). Every finding against every entry took seconds for a file of 20,000
+  // suppression comments.
   void filter(std::vector<Diagnostic>& list) {
-    list.erase(std::remove_if(list.begin(), list.end(),
-                              [&](const Diagnostic& d) {
-                                auto it = files_.find(d.loc.file);
-                                if (it == files_.end()) return false;
-                                const uint32_t line = it->second.unit->source->line_of(d.loc.span.begin);
-                                bool hit = false;
-                                for (Directive& dir : it->second.directives) {
-                                  if (dir.kind == DirectiveKind::RangeEnd) continue;
-                                  for (SuppressionEntry& e : dir.entries) {
-                                    if (!entry_names(e, d.code)) continue;
-                                    if (line < e.first_line || line > e.last_line) continue;
-                                    e.used = true;
-                                    hit = true;
-                                  }
-                                }
-                                return hit;
-                              }),
-               list.end());
+    std::map<std::pair<FileId, std::string_view>, std::vector<size_t>> groups;  // findings by file and code
+    for (size_t i = 0; i < list.size(); ++i)
+      if (files_.count(list[i].loc.file)) groups[{list[i].loc.file, list[i].code}].push_back(i);
+    std::vector<char> drop(list.size(), 0);
+    for (const auto& [key, found] : groups) {
+      FileDirectives& fd = files_.at(key.first);
+      std::vector<SuppressionEntry*> entries;
+      for (Directive& dir : fd.directives) {
+        if (dir.kind == DirectiveKind::RangeEnd) continue;
+        for (SuppressionEntry& e : dir.entries)
+          if (e.first_line <= e.last_line && entry_names(e, key.second)) entries.push_back(&e);
+      }
+      if (entries.empty()) continue;
+      std::stable_sort(entries.begin(), entries.end(), [](const SuppressionEntry* x, const SuppressionEntry* y) {
+        return x->first_line < y->first_line;
+      });
+      std::vector<uint32_t> reach(entries.size());  // the farthest last line among entries [0, k]
+      for (size_t k = 0; k < entries.size(); ++k) reach[k] = std::max(entries[k]->last_line, k ? reach[k - 1] : 0u);
+      std::vector<uint32_t> lines;
+      for (const size_t i : found) {
+        const uint32_t line = fd.unit->source->line_of(list[i].loc.span.begin);
+        lines.push_back(line);
+        auto after = std::upper_bound(entries.begin(), entries.end(), line,
+                                      [](uint32_t l, const SuppressionEntry* e) { return l < e->first_line; });
+        if (after != entries.begin() && reach[static_cast<size_t>(after - entries.begin()) - 1] >= line) drop[i] = 1;
+      }
+      std::sort(lines.begin(), lines.end());
+      for (SuppressionEntry* e : entries) {
+        auto it = std::lower_bound(lines.begin(), lines.end(), e->first_line);
+        if (it != lines.end() && *it <= e->last_line) e->used = true;
+      }
+    }
+    size_t kept = 0;
+    for (size_t i = 0; i < list.size(); ++i)
+      if (!drop[i]) {
+        if (kept != i) list[kept] = std::move(list[i]);
+        ++kept;
+      }
+    list.resize(kept);
   }
 
   /// RRF901: directives that name no known rule, or are not directives at all.

@@ -1,0 +1,115 @@
+// The G10 rules about a tool offset line without Z (RRF306 g10-missing-z, RRF331 g10-implicit-z): which tool and
+// Z offset such a line leaves, whether the Z is set again before the tool is used, and the fix that appends it.
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "rules/tool_helpers.h"
+
+namespace rrflint::tools {
+
+/// A tool-offset G10 that sets other axes but not Z (RRF306, RRF331): the tool and its Z offset before the line.
+struct MissingZ {
+  int tool = -1;
+  const Tool* t = nullptr;
+  Fact z;
+  bool probed = false;  // loaded by M501 or measured by M585
+};
+
+/// For z_set_later, built once per graph (Graph::derived): the nodes that set a tool's Z or re-create it (a G10
+/// with Z in the tool form, an M563 that defines a tool), and the T nodes that select one, by tool number; those of
+/// an unknown tool apart. A config of thousands of G10 lines without Z walked, for each, every node after it.
+struct ZSetters {
+  std::unordered_map<int64_t, std::vector<NodeId>> set_by_tool, select_by_tool;
+  std::vector<NodeId> set_unknown, select_unknown;  // P{expr}: may be any tool; T{expr} (not a deselect)
+};
+inline const ZSetters& z_setters(const NodeContext& cx) {
+  const Version fw = cx.state.firmware;
+  return cx.graph.derived<ZSetters>("tools.z_setters." + fw.str(), [&] {
+    ZSetters out;
+    for (const int number : {10, 563}) {
+      const std::vector<NodeId>* ids = cx.graph.code_nodes(cx.machine, number == 10 ? 'G' : 'M', number);
+      if (!ids) continue;
+      for (const NodeId id : *ids) {
+        const Node n = cx.graph.nodes[id];
+        const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
+        if (pf.commands.code(n.index).fraction >= 0) continue;
+        const Command c = pf.commands[n.index];
+        auto P = get_int(pf, c, 'P');
+        if (!P.present()) continue;
+        bool sets = false;
+        if (number == 563) {
+          sets = m563_defines(pf, c);
+        } else if (pf.find(c, 'Z')) {
+          const G10Form f = g10_form(pf, c, nullptr, fw);  // P is present: never Unknown for axes
+          sets = f == G10Form::Tool || f == G10Form::Unknown;
+        }
+        if (!sets) continue;
+        if (P.known()) out.set_by_tool[P.value].push_back(id);
+        else out.set_unknown.push_back(id);
+      }
+    }
+    for (auto& [tool, ids] : out.set_by_tool) std::sort(ids.begin(), ids.end());
+    std::sort(out.set_unknown.begin(), out.set_unknown.end());
+    cx.graph.nodes.each_whole([&](NodeId id, const Node& n) {
+      if (n.kind != NodeKind::ToolSelect) return;
+      if (n.index != kNoToolNumber) out.select_by_tool[n.index].push_back(id);
+      else if (!is_deselect(cx.machine, cx.graph, id)) out.select_unknown.push_back(id);
+    });
+    return out;
+  });
+}
+
+/// Is tool n's Z set again (or the tool re-created) later in this segment before a T selects it?
+inline bool z_set_later(const NodeContext& cx, int n) {
+  // The first T that selects tool n (or may: T{…}) after this node, and the first M563 / G10 that sets its Z.
+  const ZSetters& z = z_setters(cx);
+  auto first_after = [&](const std::vector<NodeId>& ids) {
+    auto it = std::upper_bound(ids.begin(), ids.end(), cx.id);
+    return it == ids.end() ? kNoNode : *it;
+  };
+  auto first_in = [&](const std::unordered_map<int64_t, std::vector<NodeId>>& by_tool) {
+    auto it = by_tool.find(n);
+    return it == by_tool.end() ? kNoNode : first_after(it->second);
+  };
+  const NodeId stop = std::min(first_in(z.select_by_tool), first_after(z.select_unknown));
+  const NodeId set = std::min(first_in(z.set_by_tool), first_after(z.set_unknown));
+  return set < stop && set < cx.segment().end;
+}
+
+inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
+  if (!cx.is('G', 10) || !cx.certain()) return std::nullopt;
+  const ParsedFile& pf = cx.parsed();
+  const Command& c = cx.command();
+  const MachineState& s = cx.state;
+  if (s.running_m501) return std::nullopt;  // config-override.g: M500 writes only the probed axes, on purpose
+  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return std::nullopt;
+  const ToolRef ref = addressed_tool(pf, c, s);
+  if (!ref.known || ref.number < 0) return std::nullopt;
+  const Tool* t = s.tool(ref.number);
+  if (!t || t->maybe) return std::nullopt;
+  const int z = s.axis_index('Z');
+  if (z < 0 || z >= kMaxAxisSlots || !s.axis_visible(z) || pf.find(c, 'Z')) return std::nullopt;
+  bool other = false;
+  for (int i = 0; i < s.visible_axes && i < static_cast<int>(s.axes.size()) && !other; ++i)
+    other = i != z && pf.find(c, s.axes[static_cast<size_t>(i)].letter) != nullptr;
+  if (!other || z_set_later(cx, ref.number)) return std::nullopt;
+  MissingZ m;
+  m.tool = ref.number;
+  m.t = t;
+  m.z = t->offsets[static_cast<size_t>(z)];
+  m.probed = t->probed[static_cast<size_t>(z)];
+  return m;
+}
+
+/// The fix that appends ` Z<value>` to the G10 at `cx`, right after its last parameter.
+inline Fix append_z(const NodeContext& cx, const std::string& value) {
+  const uint32_t end = cx.command().span.end;
+  return Fix::safe(fmt::format("append 'Z{}'", value), Edit::insert(cx.at(Span{end, end}), " Z" + value));
+}
+
+}  // namespace rrflint::tools
