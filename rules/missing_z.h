@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -64,9 +66,46 @@ inline const ZSetters& z_setters(const NodeContext& cx) {
   });
 }
 
+/// The nodes z_set_later has walked so far in a graph (Graph::derived): past a budget it asks the index instead.
+struct ZWalked {
+  std::shared_ptr<std::atomic<uint64_t>> nodes = std::make_shared<std::atomic<uint64_t>>(0);
+};
+
 /// Is tool n's Z set again (or the tool re-created) later in this segment before a T selects it?
 inline bool z_set_later(const NodeContext& cx, int n) {
-  // The first T that selects tool n (or may: T{…}) after this node, and the first M563 / G10 that sets its Z.
+  // The first T that selects tool n (or may: T{…}), or the first M563 / G10 that sets its Z, decides. It is
+  // usually a few lines on, so the nodes are walked to it, as long as all the walks of the graph stay within a
+  // budget of half its nodes (and 64 Ki more). Past that (thousands of G10 lines without Z and no T between), the
+  // index answers: built once, it costs a lexing of every G10 and M563 (25 ms in a 100 MB config), more than the
+  // walks of a real config.
+  std::atomic<uint64_t>& walked = *cx.graph.derived<ZWalked>("tools.z_walked", [] { return ZWalked{}; }).nodes;
+  const uint64_t budget = cx.graph.nodes.size() / 2 + 65536;
+  const NodeId end = cx.segment().end;
+  const uint64_t left = budget - std::min(budget, walked.load(std::memory_order_relaxed));
+  const NodeId walk_end = end - cx.id - 1 > left ? static_cast<NodeId>(cx.id + 1 + left) : end;
+  bool set = false;
+  const NodeId decided = cx.graph.nodes.find_if(cx.id + 1, walk_end, [&](NodeId i, const Node& node) {
+    if (node.kind == NodeKind::ToolSelect)
+      return node.index == static_cast<uint32_t>(n) ||
+             (node.index == kNoToolNumber && !is_deselect(cx.machine, cx.graph, i));
+    if (node.kind != NodeKind::Command) return false;
+    const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
+    const CommandTable::Code code = pf.commands.code(node.index);
+    const bool m563 = code.letter == 'M' && code.number == 563 && code.fraction < 0;
+    const bool g10 = code.letter == 'G' && code.number == 10 && code.fraction < 0;
+    if (!m563 && !g10) return false;
+    const Command c = pf.commands[node.index];
+    auto P = get_int(pf, c, 'P');
+    const bool this_tool = P.present() && (!P.known() || P.value == n);  // an unknown P may be this tool
+    if (m563 && m563_defines(pf, c) && this_tool) set = true;
+    if (g10 && this_tool && pf.find(c, 'Z')) {
+      const G10Form f = g10_form(pf, c, nullptr, cx.state.firmware);  // P is present: never Unknown for axes
+      if (f == G10Form::Tool || f == G10Form::Unknown) set = true;
+    }
+    return set;
+  });
+  walked.fetch_add(decided != kNoNode ? decided - cx.id : walk_end - cx.id - 1, std::memory_order_relaxed);
+  if (decided != kNoNode || walk_end == end) return set;
   const ZSetters& z = z_setters(cx);
   auto first_after = [&](const std::vector<NodeId>& ids) {
     auto it = std::upper_bound(ids.begin(), ids.end(), cx.id);
@@ -77,8 +116,8 @@ inline bool z_set_later(const NodeContext& cx, int n) {
     return it == by_tool.end() ? kNoNode : first_after(it->second);
   };
   const NodeId stop = std::min(first_in(z.select_by_tool), first_after(z.select_unknown));
-  const NodeId set = std::min(first_in(z.set_by_tool), first_after(z.set_unknown));
-  return set < stop && set < cx.segment().end;
+  const NodeId first_set = std::min(first_in(z.set_by_tool), first_after(z.set_unknown));
+  return first_set < stop && first_set < end;
 }
 
 inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
