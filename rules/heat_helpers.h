@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -98,32 +99,57 @@ void each_since_code(const NodeContext& cx, NodeId from, char letter, int number
   walk(here.begin, cx.id);
 }
 
-/// Does this M308 create sensor n (S n with a Y type; an unknown S may be n)? Without Y it configures an existing one.
-inline bool creates_sensor(const ParsedFile& pf, const Command& c, int n, bool& unknown) {
-  auto S = get_int(pf, c, 'S');
-  if (S.unknown()) unknown = true;
-  return unknown || (S.known() && S.value == n && pf.find(c, 'Y'));
+/// The M308 commands that create sensors, by sensor number, and those whose sensor number is an expression: as
+/// graph nodes in node order, and whether any command on the card (in or out of the graph). Built once per graph
+/// (Graph::derived): a card of thousands of heaters asked every M308 for each M950.
+struct M308Index {
+  std::unordered_map<int64_t, std::vector<NodeId>> creating;  // S n with a Y type
+  std::vector<NodeId> unknown;                                // S {expr}
+  std::set<int64_t> card_creates;                             // on the card, in any file
+  bool card_unknown = false;
+};
+inline const M308Index& m308_index(const Machine& m, const Graph& g) {
+  return g.derived<M308Index>("heat.m308_index", [&] {
+    M308Index out;
+    for (uint32_t i = 0; i < m.unit_count(); ++i) {
+      const ParsedFile& pf = m.unit(i).parsed;
+      for (const uint32_t j : pf.with_code('M', 308)) {
+        const Command c = pf.commands[j];
+        auto S = get_int(pf, c, 'S');
+        if (S.unknown()) out.card_unknown = true;
+        else if (S.known() && pf.find(c, 'Y')) out.card_creates.insert(S.value);
+      }
+    }
+    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 308))
+      for (const NodeId id : *ids) {
+        const Node n = g.nodes[id];
+        const ParsedFile& pf = m.unit(n.unit).parsed;
+        if (pf.commands.code(n.index).fraction >= 0) continue;
+        const Command c = pf.commands[n.index];
+        auto S = get_int(pf, c, 'S');
+        if (S.unknown()) out.unknown.push_back(id);
+        else if (S.known() && pf.find(c, 'Y')) out.creating[S.value].push_back(id);
+      }
+    return out;
+  });
 }
 
 /// The later `M308 S<n> Y…` in this segment that creates sensor n; kNoNode if none. `unknown` as for
-/// later_creation.
+/// later_creation: the first such M308 has an expression for its sensor number (it may be n).
 inline NodeId later_sensor(const NodeContext& cx, int n, bool& unknown) {
-  unknown = false;
-  return tools::find_later(cx, 'M', 308,
-                           [&](const tools::NodeCommand& k) { return creates_sensor(*k.pf, *k.c, n, unknown); });
+  const M308Index& index = m308_index(cx.machine, cx.graph);
+  auto it = index.creating.find(n);
+  const NodeId known = it == index.creating.end() ? kNoNode : tools::first_later(cx, it->second);
+  const NodeId maybe = tools::first_later(cx, index.unknown);
+  unknown = maybe < known;
+  return std::min(known, maybe);
 }
 
-/// Does any M308 on the card create sensor n? A macro run after boot may create it. With `or_unknown`, an M308 whose
-/// sensor number is an expression (it may be n) counts too.
-inline bool any_m308_creates(const Machine& m, int n, bool or_unknown = false) {
-  for (uint32_t i = 0; i < m.unit_count(); ++i) {
-    const ParsedFile& pf = m.unit(i).parsed;
-    for (const uint32_t j : pf.with_code('M', 308)) {
-      bool unknown = false;
-      if (creates_sensor(pf, pf.commands[j], n, unknown) || (or_unknown && unknown)) return true;
-    }
-  }
-  return false;
+/// Does any M308 on the card create sensor n? A macro run after boot may create it. An M308 whose sensor number is
+/// an expression counts too (it may be n).
+inline bool any_m308_creates(const Machine& m, const Graph& g, int n) {
+  const M308Index& index = m308_index(m, g);
+  return index.card_creates.count(n) || index.card_unknown;
 }
 
 }  // namespace rrflint::heat

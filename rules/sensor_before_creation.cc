@@ -72,9 +72,9 @@ void check(const NodeContext& cx, Sink& out) {
   bool unknown = false;
   // The walk to the end of the boot is needed only when some M308 on the card creates sensor sn, or may: a
   // card-wide look at the M308 lists first keeps a file of many heaters linear.
-  const bool may = heat::any_m308_creates(cx.machine, sn, true);
+  const bool may = heat::any_m308_creates(cx.machine, cx.graph, sn);
   const NodeId create = cx.in_boot() && may ? heat::later_sensor(cx, sn, unknown) : kNoNode;
-  if (unknown || (create == kNoNode && may && heat::any_m308_creates(cx.machine, sn))) return;
+  if (unknown || (create == kNoNode && may && heat::any_m308_creates(cx.machine, cx.graph, sn))) return;
   const std::string what =
       create == kNoNode
           ? fmt::format(

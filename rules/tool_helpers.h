@@ -171,6 +171,12 @@ inline bool runs_again(const NodeContext& cx, NodeId from) {
   return runs_again(cx.graph, cx.self, from, cx.segment().end);
 }
 
+/// The first of `ids` (sorted) after the node at `cx`, in its segment; kNoNode if none.
+inline NodeId first_later(const NodeContext& cx, const std::vector<NodeId>& ids) {
+  auto next = std::upper_bound(ids.begin(), ids.end(), cx.id);
+  return next != ids.end() && *next < cx.segment().end ? *next : kNoNode;
+}
+
 /// Per tool number, the M563 nodes that define it with a known P, in node order. Built once per graph
 /// (Graph::derived): a config of thousands of tools asked for each G10 which of the thousands of M563 after it
 /// comes next, lexing each.
@@ -197,14 +203,43 @@ inline const M563ByTool& m563_by_tool(const Machine& m, const Graph& g) {
 inline NodeId later_m563(const NodeContext& cx, int n) {
   const M563ByTool& index = m563_by_tool(cx.machine, cx.graph);
   auto it = index.by_tool.find(n);
-  if (it == index.by_tool.end()) return kNoNode;
-  auto next = std::upper_bound(it->second.begin(), it->second.end(), cx.id);
-  return next != it->second.end() && *next < cx.segment().end ? *next : kNoNode;
+  return it == index.by_tool.end() ? kNoNode : first_later(cx, it->second);
+}
+
+/// The M584 nodes (no fraction) by the axis letters they name, in node order; built once per graph
+/// (Graph::derived). A card that repeats its M584s thousands of times asked each later one, for each line naming a
+/// missing axis.
+struct M584ByLetter {
+  std::unordered_map<char, std::vector<NodeId>> by_letter;
+  std::unordered_map<char, std::vector<NodeId>> certain_by_letter;  // those not inside an if/while
+  std::vector<NodeId> certain;                                      // every M584 not inside an if/while
+};
+inline const M584ByLetter& m584_by_letter(const Machine& m, const Graph& g) {
+  return g.derived<M584ByLetter>("tools.m584_by_letter", [&] {
+    M584ByLetter out;
+    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 584))
+      for (const NodeId id : *ids) {
+        const Node n = g.nodes[id];
+        const ParsedFile& pf = m.unit(n.unit).parsed;
+        if (pf.commands.code(n.index).fraction >= 0) continue;
+        if (!n.maybe) out.certain.push_back(id);
+        std::string seen;
+        for (const Param& p : pf.params(pf.commands[n.index]))
+          if (p.letter != 0 && seen.find(p.letter) == std::string::npos) {
+            seen += p.letter;
+            out.by_letter[p.letter].push_back(id);
+            if (!n.maybe) out.certain_by_letter[p.letter].push_back(id);
+          }
+      }
+    return out;
+  });
 }
 
 /// The later M584 in this segment that names axis `letter`.
 inline NodeId later_m584_for(const NodeContext& cx, char letter) {
-  return find_later(cx, 'M', 584, [&](const NodeCommand& nc) { return nc.pf->find(*nc.c, letter) != nullptr; });
+  const M584ByLetter& index = m584_by_letter(cx.machine, cx.graph);
+  auto it = index.by_letter.find(letter);
+  return it == index.by_letter.end() ? kNoNode : first_later(cx, it->second);
 }
 
 /// Does any M584 on the card name axis `letter`? A macro run after boot may create the axis.

@@ -1,7 +1,10 @@
 // RRF321 tool-map-before-axis: an M563 X/Y/Z map names an axis index that does not exist (yet) or is hidden.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <vector>
 #include "lint/engine/rule.h"
+
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -98,14 +101,28 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
     if (hidden && s.visible_set != kNoNode) r.note(cx.where(s.visible_set), "the visible axes are set here");
     if (!hidden) {
       // Look ahead for the M584 that creates enough axes.
+      // The first later M584 (not in an if/while) by which the axes named so far outnumber idx: each new letter
+      // counts at its first such M584 (from the index of M584s by letter), so it is the need-th of those.
       std::string letters;
       for (const Axis& a : s.axes) letters += a.letter;
-      NodeId later = tools::find_later(cx, 'M', 584, [&](const tools::NodeCommand& nc) {
-        if (nc.node.maybe) return false;
-        for (char L : allowed_axis_letters())
-          if (letters.find(L) == std::string::npos && nc.pf->find(*nc.c, L)) letters += L;
-        return letters.size() > static_cast<size_t>(idx);
-      });
+      const tools::M584ByLetter& m584s = tools::m584_by_letter(cx.machine, cx.graph);
+      NodeId later = kNoNode;
+      const ptrdiff_t need = static_cast<ptrdiff_t>(idx) + 1 - static_cast<ptrdiff_t>(letters.size());
+      if (need <= 0) {
+        later = tools::first_later(cx, m584s.certain);
+      } else {
+        std::vector<NodeId> firsts;
+        for (char L : allowed_axis_letters()) {
+          if (letters.find(L) != std::string::npos) continue;
+          auto it = m584s.certain_by_letter.find(L);
+          if (it == m584s.certain_by_letter.end()) continue;
+          if (const NodeId at = tools::first_later(cx, it->second); at != kNoNode) firsts.push_back(at);
+        }
+        if (firsts.size() >= static_cast<size_t>(need)) {
+          std::nth_element(firsts.begin(), firsts.begin() + (need - 1), firsts.end());
+          later = firsts[static_cast<size_t>(need - 1)];
+        }
+      }
       if (later != kNoNode) r.note(cx.where(later), fmt::format("axis index {} is created later, here", idx));
     }
     if (mixup)
