@@ -120,16 +120,11 @@ inline const M308Index& m308_index(const Machine& m, const Graph& g) {
         else if (S.known() && pf.find(c, 'Y')) out.card_creates.insert(S.value);
       }
     }
-    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 308))
-      for (const NodeId id : *ids) {
-        const Node n = g.nodes[id];
-        const ParsedFile& pf = m.unit(n.unit).parsed;
-        if (pf.commands.code(n.index).fraction >= 0) continue;
-        const Command c = pf.commands[n.index];
-        auto S = get_int(pf, c, 'S');
-        if (S.unknown()) out.unknown.push_back(id);
-        else if (S.known() && pf.find(c, 'Y')) out.creating[S.value].push_back(id);
-      }
+    tools::each_code_command(m, g, 'M', 308, [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+      auto S = get_int(pf, c, 'S');
+      if (S.unknown()) out.unknown.push_back(id);
+      else if (S.known() && pf.find(c, 'Y')) out.creating[S.value].push_back(id);
+    });
     return out;
   });
 }

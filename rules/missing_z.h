@@ -33,28 +33,22 @@ inline const ZSetters& z_setters(const NodeContext& cx) {
   const Version fw = cx.state.firmware;
   return cx.graph.derived<ZSetters>("tools.z_setters." + fw.str(), [&] {
     ZSetters out;
-    for (const int number : {10, 563}) {
-      const std::vector<NodeId>* ids = cx.graph.code_nodes(cx.machine, number == 10 ? 'G' : 'M', number);
-      if (!ids) continue;
-      for (const NodeId id : *ids) {
-        const Node n = cx.graph.nodes[id];
-        const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
-        if (pf.commands.code(n.index).fraction >= 0) continue;
-        const Command c = pf.commands[n.index];
-        auto P = get_int(pf, c, 'P');
-        if (!P.present()) continue;
-        bool sets = false;
-        if (number == 563) {
-          sets = m563_defines(pf, c);
-        } else if (pf.find(c, 'Z')) {
-          const G10Form f = g10_form(pf, c, nullptr, fw);  // P is present: never Unknown for axes
-          sets = f == G10Form::Tool || f == G10Form::Unknown;
-        }
-        if (!sets) continue;
-        if (P.known()) out.set_by_tool[P.value].push_back(id);
-        else out.set_unknown.push_back(id);
-      }
-    }
+    for (const int number : {10, 563})
+      each_code_command(cx.machine, cx.graph, number == 10 ? 'G' : 'M', number,
+                        [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+                          auto P = get_int(pf, c, 'P');
+                          if (!P.present()) return;
+                          bool sets = false;
+                          if (number == 563) {
+                            sets = m563_defines(pf, c);
+                          } else if (pf.find(c, 'Z')) {
+                            const G10Form f = g10_form(pf, c, nullptr, fw);  // P is present: never Unknown for axes
+                            sets = f == G10Form::Tool || f == G10Form::Unknown;
+                          }
+                          if (!sets) return;
+                          if (P.known()) out.set_by_tool[P.value].push_back(id);
+                          else out.set_unknown.push_back(id);
+                        });
     for (auto& [tool, ids] : out.set_by_tool) std::sort(ids.begin(), ids.end());
     std::sort(out.set_unknown.begin(), out.set_unknown.end());
     cx.graph.nodes.each_whole([&](NodeId id, const Node& n) {

@@ -171,6 +171,20 @@ inline bool runs_again(const NodeContext& cx, NodeId from) {
   return runs_again(cx.graph, cx.self, from, cx.segment().end);
 }
 
+/// Calls f(id, node, file, command) for each command node of code `letter` `number` (no fraction), in node order:
+/// what an index built once per graph (Graph::derived) walks.
+template <class F>
+void each_code_command(const Machine& m, const Graph& g, char letter, int number, F f) {
+  const std::vector<NodeId>* ids = g.code_nodes(m, letter, number);
+  if (!ids) return;
+  for (const NodeId id : *ids) {
+    const Node n = g.nodes[id];
+    const ParsedFile& pf = m.unit(n.unit).parsed;
+    if (pf.commands.code(n.index).fraction >= 0) continue;
+    f(id, n, pf, pf.commands[n.index]);
+  }
+}
+
 /// The first of `ids` (sorted) after the node at `cx`, in its segment; kNoNode if none.
 inline NodeId first_later(const NodeContext& cx, const std::vector<NodeId>& ids) {
   auto next = std::upper_bound(ids.begin(), ids.end(), cx.id);
@@ -186,15 +200,10 @@ struct M563ByTool {
 inline const M563ByTool& m563_by_tool(const Machine& m, const Graph& g) {
   return g.derived<M563ByTool>("tools.m563_by_tool", [&] {
     M563ByTool out;
-    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 563))
-      for (const NodeId id : *ids) {
-        const Node n = g.nodes[id];
-        const ParsedFile& pf = m.unit(n.unit).parsed;
-        if (pf.commands.code(n.index).fraction >= 0) continue;
-        const Command c = pf.commands[n.index];
-        if (!m563_defines(pf, c)) continue;
-        if (auto P = get_int(pf, c, 'P'); P.known()) out.by_tool[P.value].push_back(id);
-      }
+    each_code_command(m, g, 'M', 563, [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+      if (!m563_defines(pf, c)) return;
+      if (auto P = get_int(pf, c, 'P'); P.known()) out.by_tool[P.value].push_back(id);
+    });
     return out;
   });
 }
@@ -217,20 +226,16 @@ struct M584ByLetter {
 inline const M584ByLetter& m584_by_letter(const Machine& m, const Graph& g) {
   return g.derived<M584ByLetter>("tools.m584_by_letter", [&] {
     M584ByLetter out;
-    if (const std::vector<NodeId>* ids = g.code_nodes(m, 'M', 584))
-      for (const NodeId id : *ids) {
-        const Node n = g.nodes[id];
-        const ParsedFile& pf = m.unit(n.unit).parsed;
-        if (pf.commands.code(n.index).fraction >= 0) continue;
-        if (!n.maybe) out.certain.push_back(id);
-        std::string seen;
-        for (const Param& p : pf.params(pf.commands[n.index]))
-          if (p.letter != 0 && seen.find(p.letter) == std::string::npos) {
-            seen += p.letter;
-            out.by_letter[p.letter].push_back(id);
-            if (!n.maybe) out.certain_by_letter[p.letter].push_back(id);
-          }
-      }
+    each_code_command(m, g, 'M', 584, [&](NodeId id, const Node& n, const ParsedFile& pf, const Command& c) {
+      if (!n.maybe) out.certain.push_back(id);
+      std::string seen;
+      for (const Param& p : pf.params(c))
+        if (p.letter != 0 && seen.find(p.letter) == std::string::npos) {
+          seen += p.letter;
+          out.by_letter[p.letter].push_back(id);
+          if (!n.maybe) out.certain_by_letter[p.letter].push_back(id);
+        }
+    });
     return out;
   });
 }
