@@ -133,8 +133,7 @@ inline const M308Index& m308_index(const Machine& m, const Graph& g) {
 /// later_creation: the first such M308 has an expression for its sensor number (it may be n).
 inline NodeId later_sensor(const NodeContext& cx, int n, bool& unknown) {
   const M308Index& index = m308_index(cx.machine, cx.graph);
-  auto it = index.creating.find(n);
-  const NodeId known = it == index.creating.end() ? kNoNode : tools::first_later(cx, it->second);
+  const NodeId known = tools::first_later(cx, index.creating, int64_t{n});
   const NodeId maybe = tools::first_later(cx, index.unknown);
   unknown = maybe < known;
   return std::min(known, maybe);

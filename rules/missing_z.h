@@ -101,17 +101,9 @@ inline bool z_set_later(const NodeContext& cx, int n) {
   walked.fetch_add(decided != kNoNode ? decided - cx.id : walk_end - cx.id - 1, std::memory_order_relaxed);
   if (decided != kNoNode || walk_end == end) return set;
   const ZSetters& z = z_setters(cx);
-  auto first_after = [&](const std::vector<NodeId>& ids) {
-    auto it = std::upper_bound(ids.begin(), ids.end(), cx.id);
-    return it == ids.end() ? kNoNode : *it;
-  };
-  auto first_in = [&](const std::unordered_map<int64_t, std::vector<NodeId>>& by_tool) {
-    auto it = by_tool.find(n);
-    return it == by_tool.end() ? kNoNode : first_after(it->second);
-  };
-  const NodeId stop = std::min(first_in(z.select_by_tool), first_after(z.select_unknown));
-  const NodeId first_set = std::min(first_in(z.set_by_tool), first_after(z.set_unknown));
-  return first_set < stop && first_set < end;
+  const NodeId stop = std::min(first_later(cx, z.select_by_tool, int64_t{n}), first_later(cx, z.select_unknown));
+  const NodeId first_set = std::min(first_later(cx, z.set_by_tool, int64_t{n}), first_later(cx, z.set_unknown));
+  return first_set < stop;  // kNoNode (none in the segment) is never less
 }
 
 inline std::optional<MissingZ> missing_z(const NodeContext& cx) {

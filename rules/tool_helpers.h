@@ -191,6 +191,13 @@ inline NodeId first_later(const NodeContext& cx, const std::vector<NodeId>& ids)
   return next != ids.end() && *next < cx.segment().end ? *next : kNoNode;
 }
 
+/// first_later of the nodes an index keeps under `key` (none: kNoNode).
+template <class Map, class Key>
+NodeId first_later(const NodeContext& cx, const Map& index, const Key& key) {
+  auto it = index.find(key);
+  return it == index.end() ? kNoNode : first_later(cx, it->second);
+}
+
 /// Per tool number, the M563 nodes that define it with a known P, in node order. Built once per graph
 /// (Graph::derived): a config of thousands of tools asked for each G10 which of the thousands of M563 after it
 /// comes next, lexing each.
@@ -210,9 +217,7 @@ inline const M563ByTool& m563_by_tool(const Machine& m, const Graph& g) {
 
 /// The later M563 in this segment that defines tool n.
 inline NodeId later_m563(const NodeContext& cx, int n) {
-  const M563ByTool& index = m563_by_tool(cx.machine, cx.graph);
-  auto it = index.by_tool.find(n);
-  return it == index.by_tool.end() ? kNoNode : first_later(cx, it->second);
+  return first_later(cx, m563_by_tool(cx.machine, cx.graph).by_tool, int64_t{n});
 }
 
 /// The M584 nodes (no fraction) by the axis letters they name, in node order; built once per graph
@@ -242,9 +247,7 @@ inline const M584ByLetter& m584_by_letter(const Machine& m, const Graph& g) {
 
 /// The later M584 in this segment that names axis `letter`.
 inline NodeId later_m584_for(const NodeContext& cx, char letter) {
-  const M584ByLetter& index = m584_by_letter(cx.machine, cx.graph);
-  auto it = index.by_letter.find(letter);
-  return it == index.by_letter.end() ? kNoNode : first_later(cx, it->second);
+  return first_later(cx, m584_by_letter(cx.machine, cx.graph).by_letter, letter);
 }
 
 /// Does any M584 on the card name axis `letter`? A macro run after boot may create the axis.

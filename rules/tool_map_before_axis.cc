@@ -3,8 +3,8 @@
 
 #include <algorithm>
 #include <vector>
-#include "lint/engine/rule.h"
 
+#include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -100,9 +100,9 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
     Report r = out.report(kMeta, cx.at(m.param->span), std::move(msg));
     if (hidden && s.visible_set != kNoNode) r.note(cx.where(s.visible_set), "the visible axes are set here");
     if (!hidden) {
-      // Look ahead for the M584 that creates enough axes.
-      // The first later M584 (not in an if/while) by which the axes named so far outnumber idx: each new letter
-      // counts at its first such M584 (from the index of M584s by letter), so it is the need-th of those.
+      // Look ahead for the M584 that creates enough axes: the first later M584 (not in an if/while) by which the
+      // axes named so far outnumber idx. Each new letter counts at its first such M584 (from the index of M584s by
+      // letter), so it is the need-th of those.
       std::string letters;
       for (const Axis& a : s.axes) letters += a.letter;
       const tools::M584ByLetter& m584s = tools::m584_by_letter(cx.machine, cx.graph);

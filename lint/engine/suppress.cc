@@ -140,7 +140,6 @@ class SuppressionPass {
   /// Is the rule with this code on in this run?
   bool on(std::string_view code) const { return on_.count(code) != 0; }
 
-  /// Removes the diagnostics a directive covers and marks those directives used.
   // Removes the findings a directive covers, and marks `used` each entry that covers one. By file and code: the
   // entries naming the code, sorted by first line with the farthest last line so far, say by a binary search
   // whether a finding's line is covered; an entry is used when some finding of the code lies in its lines (a
