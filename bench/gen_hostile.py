@@ -10,6 +10,9 @@ the same size.
   g10s         20,000 G10 lines of one tool without Z, each with a same-line suppression comment
   ranges       20,000 suppression ranges opened and never closed
   parens       100,000 nested parentheses, braces and '!' in expressions
+  devices      20,000 tools that all fail (no extruder), 20,000 M143s of one heater, 10,000 fans re-created,
+               20,000 heaters named before their M950, 500 probes re-created 40 times: each finding or check once
+               walked every later (or earlier) node
 
 Usage: gen_hostile.py OUT_DIR   (writes OUT_DIR/<shape>/sys/...)
 """
@@ -43,6 +46,18 @@ def main():
     n = 100000
     card(out, "parens", {"config.g": "G1 X{" + "(" * n + "1" + ")" * n + "}\nG1 X" + "{" * n + "1" + "}" * n +
                          "\nif " + "!" * n + "true\n  G1 X1\n"})
+    n = 20000
+    head = "; rrflint-options: --firmware 3.5\nM584 X0 Y1 Z2\n"
+    card(out, "devices", {
+        "config.g": head + 'M98 P"tools.g"\nM98 P"monitors.g"\nM98 P"fans.g"\nM98 P"heaters.g"\nM98 P"probes.g"\n',
+        "tools.g": "".join(f"M563 P{i} D0\n" for i in range(n)),
+        "monitors.g": 'M308 S1 P"temp1" Y"thermistor"\nM950 H1 C"out1" T1\n' +
+                      "".join(f"M143 H1 S{200 + i % 50}\n" for i in range(n)),
+        "fans.g": "".join(f'M950 F{i} C"out{i}"\nM106 P{i} S0.5\nM950 F{i} C"out{i}"\n' for i in range(n // 2)),
+        "heaters.g": "".join(f"M140 H{i}\n" for i in range(2, n)) +
+                     "".join(f'M950 H{i} C"out{i}" T1\n' for i in range(2, n)),
+        "probes.g": "".join(f'M558 K{i % 500} P5 C"io{i % 500}.in" H5\nG31 K{i % 500} Z{i % 7}\n' for i in range(n)),
+    })
 
 
 if __name__ == "__main__":

@@ -7,7 +7,8 @@
 #   P4  peak RSS (/usr/bin/time -v) at 1, 10 and 100 MB: is memory linear in the input?
 #   P5  in-process re-lint of a 300-line config (Google Benchmark, bench/bench_core.cc), target <= 1 ms
 #   P6  the findings-heavy input (../shared/tools/gen-corpus-big.py) at 10, 30, 100 MB, against gcode-parser
-#   P7  hostile shapes (bench/gen_hostile.py): a diamond of macro calls, thousands of tools, huge words, deep nesting
+#   P7  hostile shapes (bench/gen_hostile.py): a diamond of macro calls, thousands of tools, huge words, deep nesting;
+#       and every fixture repeated to 1 MB (bench/repeat_fixtures.py)
 #
 # Usage: bench/run.sh [--quick]     (--quick: fewer runs, for checking the script itself)
 # Needs: hyperfine, libbenchmark-dev, npm (scripts/setup.sh --bench installs them), python3.
@@ -126,10 +127,14 @@ echo "== P7: hostile shapes"
 rm -rf "$out/hostile"
 python3 "$here/gen_hostile.py" "$out/hostile"
 hostile=()
-for shape in diamond tools suppression g10s ranges parens; do
+for shape in diamond tools suppression g10s ranges parens devices; do
   hostile+=(-n "rrflint $shape" "${check[*]} $out/hostile/$shape >/dev/null 2>&1")
 done
 hyperfine --warmup 1 --runs "$big_runs" -i --export-json "$out/p7.json" "${hostile[@]}"
+# And every fixture repeated to 0.5 and 1 MB: a look-ahead that walks the nodes per command shows as a time that
+# grows faster than the input (bench/repeat_fixtures.py marks it GROWS, and SLOW past 1 s per MB).
+python3 "$here/repeat_fixtures.py" "$rrflint" 1000000 >"$out/p7-fixtures.md" ||
+  echo "P7: some repeated fixtures are marked: see $out/p7-fixtures.md"
 
 echo "== P5 and the core benchmarks (Google Benchmark)"
 "$build/rrflint_bench" --benchmark_repetitions=$((runs > 2 ? 10 : 2)) --benchmark_report_aggregates_only=true \
@@ -186,6 +191,9 @@ if os.path.exists(p6):
                  f"gcode-parser / rrflint on 100 MB: {med['gcode-parser big 100M'] / t100:.1f}x (target >= 15x)")
     lines.append("")
 hf("p7.json", "P7: hostile shapes (bench/gen_hostile.py)")
+p7f = os.path.join(out, "p7-fixtures.md")
+if os.path.exists(p7f):
+    lines += ["## P7: every fixture repeated (bench/repeat_fixtures.py)", open(p7f).read().strip(), ""]
 bc = os.path.join(out, "bench_core.json")
 if os.path.exists(bc):
     lines += ["## Google Benchmark (bench/bench_core.cc)", "| benchmark | aggregate | real time | cpu time | extra |",

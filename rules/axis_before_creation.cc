@@ -51,15 +51,6 @@ M92 X80 Y80 Z400 U80
 )md",
 };
 
-NodeId later_creation(const NodeContext& cx, char letter) {
-  return cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const ParsedFile& pf = cx.machine.unit(n.unit).parsed;
-    const Command& c = pf.commands[n.index];
-    return c.is('M', 584) && pf.find(c, letter);
-  });
-}
-
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is_command()) return;
   const Command& c = cx.command();
@@ -81,7 +72,7 @@ void check(const NodeContext& cx, Sink& out) {
                              s.firmware.str()));
       continue;
     }
-    const NodeId later = later_creation(cx, L);
+    const NodeId later = tools::later_m584_for(cx, L);
     const std::string code = clip(pf.text(c.word));
     if (later != kNoNode && (c.is('M', 208) || c.is('G', 31)) && !cx.graph.nodes[later].maybe &&
         tools::inside_m501(cx.graph, cx.id))

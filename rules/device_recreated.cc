@@ -2,6 +2,7 @@
 // the new device starts from the defaults.
 #include <fmt/format.h>
 #include <algorithm>
+#include <optional>
 #include <span>
 
 #include <string>
@@ -68,20 +69,24 @@ There is no fix: delete the second `M950`, or move the configuring commands afte
 )md",
 };
 
-/// Does this command configure heater h (letter 'H') or fan n ('F')? `unknown` is set for an expression.
-bool configures(const tools::NodeCommand& k, char letter, int n, bool& unknown) {
-  if (!k) return false;
-  if (letter == 'F') {
-    if (!k.is('M', 106)) return false;
-    auto P = get_int(*k.pf, *k.c, 'P');
-    unknown = unknown || P.unknown();
-    return P.known() && P.value == n;
-  }
-  if (!k.is('M', 307) && !k.is('M', 301) && !k.is('M', 143) && !k.is('M', 570)) return false;
-  if (k.pf->params(*k.c).begin() == k.pf->params(*k.c).end()) return false;  // no parameters: reports only
-  const heat::DeviceRef r = heat::heater_named(*k.pf, *k.c);
-  if (!r.known && get_int(*k.pf, *k.c, 'H').unknown()) unknown = true;
-  return r.known && r.number == n;
+/// The commands of code M`code` that configure a heater (letter 'H') or fan ('F'), by its number, and those that
+/// name it with an expression; built once per graph. Each re-creation used to walk every later command of the code.
+const tools::DeviceIndex& configuring(const NodeContext& cx, char letter, int code) {
+  return tools::device_index(cx.machine, cx.graph, fmt::format("device_recreated.M{}", code), 'M', code,
+                             [letter](const ParsedFile& pf, const Command& c) -> std::optional<heat::DeviceRef> {
+                               if (letter == 'F') {
+                                 auto P = get_int(pf, c, 'P');
+                                 if (P.unknown()) return heat::DeviceRef{};
+                                 if (P.known()) return heat::DeviceRef{static_cast<int>(P.value), true};
+                                 return std::nullopt;
+                               }
+                               if (pf.params(c).begin() == pf.params(c).end())
+                                 return std::nullopt;  // no parameters: reports only
+                               const heat::DeviceRef r = heat::heater_named(pf, c);
+                               if (r.known) return r;
+                               if (get_int(pf, c, 'H').unknown()) return heat::DeviceRef{};
+                               return std::nullopt;
+                             });
 }
 
 /// What a heater or fan loses with the setting this command made.
@@ -124,18 +129,23 @@ void check(const NodeContext& cx, Sink& out) {
   bool unknown = false, reconfigured = false;
   static constexpr int kFanCodes[] = {106}, kHeaterCodes[] = {307, 301, 143, 570};
   for (const int code : letter == 'F' ? std::span<const int>(kFanCodes) : std::span<const int>(kHeaterCodes)) {
+    const tools::DeviceIndex& index = configuring(cx, letter, code);
+    const std::vector<NodeId>& named = tools::ids_of(index.known, int64_t{n});
     NodeId at = kNoNode;
-    heat::each_since_code(cx, created, 'M', code, [&](NodeId id, const tools::NodeCommand& k) {
-      if (configures(k, letter, n, unknown) && at == kNoNode) at = id;
-    });
+    for (const auto& [b, e] : heat::since(cx, created)) {
+      unknown = unknown || tools::first_in(index.unknown, b, e) != kNoNode;
+      if (at == kNoNode) at = tools::first_in(named, b, e);
+    }
     if (at != kNoNode) first.emplace_back(at, code);
   }
   std::sort(first.begin(), first.end());
   std::vector<std::pair<int, NodeId>> lost_at;  // code, node (kNoNode: set again later)
   for (const auto& [id, code] : first) {
-    const bool again = tools::find_later(cx, 'M', code, [&](const tools::NodeCommand& l) {
-                         return configures(l, letter, n, unknown);
-                       }) != kNoNode;
+    bool maybe = false;  // an expression names a device before the next command that configures this one
+    const tools::DeviceIndex& index = configuring(cx, letter, code);
+    const bool again = tools::first_later(cx, index.known, int64_t{n}) != kNoNode;
+    index.first_later(cx, n, &maybe);
+    unknown = unknown || maybe;
     lost_at.emplace_back(code, again ? kNoNode : id);
     reconfigured = reconfigured || again;
   }

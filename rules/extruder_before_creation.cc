@@ -1,5 +1,8 @@
 // RRF202 extruder-before-creation: extruder values or extruder numbers before `M584 E…` creates the extruders.
 #include <algorithm>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "rules/tool_helpers.h"
 
@@ -65,10 +68,7 @@ std::string extruders_here(int n) {
   return n == 1 ? "only 1 extruder exists here" : fmt::format("only {} extruders exist here", n);
 }
 
-NodeId later_m584_e(const NodeContext& cx) {
-  return tools::find_later(cx, 'M', 584,
-                           [&](const tools::NodeCommand& nc) { return nc.pf->find(*nc.c, 'E') != nullptr; });
-}
+NodeId later_m584_e(const NodeContext& cx) { return tools::later_m584_for(cx, 'E'); }
 
 /// Does this very line run again after the M584 that creates the extruders (a macro called before and after it)?
 /// Then it takes effect after all.
@@ -81,26 +81,53 @@ void note_m584_e(const NodeContext& cx, Report& r) {
   if (NodeId at = later_m584_e(cx); at != kNoNode) r.note(cx.where(at), "the extruders are created here");
 }
 
+/// Per tool number, the nodes that select it (T) or name it (G10 in the tool form, M568, M563), in node order; built
+/// once per graph and firmware. The notes of a failed M563 used to walk every later node, for each: a config of
+/// thousands of tools that all fail was quadratic.
+struct ToolUses {
+  std::unordered_map<int64_t, std::vector<NodeId>> by_tool;
+};
+const ToolUses& tool_uses(const NodeContext& cx) {
+  const Version fw = cx.state.firmware;
+  return cx.graph.derived<ToolUses>("extruder_before_creation.tool_uses." + fw.str(), [&] {
+    ToolUses out;
+    for (const auto& [letter, number] : {std::pair{'G', 10}, std::pair{'M', 568}, std::pair{'M', 563}})
+      tools::each_code_command(cx.machine, cx.graph, letter, number,
+                               [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+                                 auto P = get_int(pf, c, 'P');
+                                 if (!P.known()) return;
+                                 if (c.is('G', 10) && !is_tool_form(g10_form(pf, c, nullptr, fw))) return;
+                                 out.by_tool[P.value].push_back(id);
+                               });
+    cx.graph.nodes.each_whole([&](NodeId id, const Node& n) {
+      if (n.kind == NodeKind::ToolSelect && n.index != kNoToolNumber) out.by_tool[n.index].push_back(id);
+    });
+    for (auto& [tool, ids] : out.by_tool) std::sort(ids.begin(), ids.end());
+    return out;
+  });
+}
+
 /// Notes at later lines that name tool n, up to its next definition: they fail or do nothing.
 void note_tool_uses(const NodeContext& cx, Report& r, int n) {
-  const Segment& seg = cx.segment();
+  const std::vector<NodeId>& uses = tools::ids_of(tool_uses(cx).by_tool, int64_t{n});
   int notes = 0;
-  cx.graph.nodes.find_if(cx.id + 1, seg.end, [&](NodeId i, const Node& node) {
-    if (node.kind == NodeKind::ToolSelect && node.index == static_cast<uint32_t>(n)) {
+  for (auto it = std::upper_bound(uses.begin(), uses.end(), cx.id);
+       it != uses.end() && *it < cx.segment().end && notes < 8; ++it) {
+    const Node& node = cx.graph.nodes[*it];
+    if (node.kind == NodeKind::ToolSelect) {
       r.note(cx.where(node.call_site), fmt::format("'T{}' here selects no tool", n));
-      return ++notes == 8;
+      ++notes;
+      continue;
     }
-    if (node.kind != NodeKind::Command) return false;
     const ParsedFile& pf = cx.machine.unit(node.unit).parsed;
     const Command c = pf.commands[node.index];
-    if (!c.is('G', 10) && !c.is('M', 568) && !c.is('M', 563)) return false;
-    auto P = get_int(pf, c, 'P');
-    if (!P.known() || P.value != n) return false;
-    if (c.is('M', 563)) return m563_defines(pf, c);
-    if (c.is('G', 10) && !is_tool_form(g10_form(pf, c, nullptr, cx.state.firmware))) return false;
-    r.note(cx.where(i), fmt::format("{} for tool {} here has no effect", c.letter == 'G' ? "G10" : "M568", n));
-    return ++notes == 8;
-  });
+    if (c.is('M', 563)) {
+      if (m563_defines(pf, c)) return;
+      continue;
+    }
+    r.note(cx.where(*it), fmt::format("{} for tool {} here has no effect", c.letter == 'G' ? "G10" : "M568", n));
+    ++notes;
+  }
 }
 
 // The first extruder number at or above `extruders` (one that does not exist), or -1.

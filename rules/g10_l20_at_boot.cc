@@ -43,11 +43,10 @@ G10 L2 P1 X0 Y0
 
 /// Did a G92 or G28 run earlier in the boot sequence? Then the position may be known.
 bool position_set_before(const NodeContext& cx) {
-  return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
-    return c.is('G', 92) || c.is('G', 28);
-  }) != kNoNode;
+  const auto any = [](NodeId, const tools::NodeCommand&) { return true; };
+  const NodeId begin = cx.segment().begin;
+  return tools::each_code_node(cx, begin, cx.id, 'G', 92, any) != kNoNode ||
+         tools::each_code_node(cx, begin, cx.id, 'G', 28, any) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {

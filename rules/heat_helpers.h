@@ -4,9 +4,11 @@
 #pragma once
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "lint/engine/rule.h"
@@ -36,6 +38,29 @@ inline bool names_heater(const tools::NodeCommand& k, int h) {
   return std::find(H.value.begin(), H.value.end(), h) != H.value.end();
 }
 
+/// The later M563/M140/M141 in this segment after `from` that names heater h in its H list (names_heater), or may;
+/// kNoNode if none. From indexes built once per graph.
+inline NodeId later_installing_defaults(const NodeContext& cx, NodeId from, int h) {
+  NodeId first = kNoNode;
+  for (const int code : {563, 140, 141}) {
+    const tools::DeviceIndex& lists =
+        cx.graph.derived<tools::DeviceIndex>("heat.h_lists.M" + std::to_string(code), [&] {
+          tools::DeviceIndex out;
+          tools::each_code_command(cx.machine, cx.graph, 'M', code,
+                                   [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+                                     auto H = get_int_list(pf, c, 'H');
+                                     if (H.unknown()) out.add(id, false, 0);
+                                     if (!H.known()) return;
+                                     for (const int64_t v : H.value)
+                                       if (out.known.count(v) == 0 || out.known[v].back() != id) out.add(id, true, v);
+                                   });
+          return out;
+        });
+    first = std::min(first, lists.first_after(from, cx.segment().end, h));
+  }
+  return first;
+}
+
 /// Is this node judged by other rules? Lines of config-override.g (at the M501 they are RRF401's notes; unloaded,
 /// RRF404's). No finding stands in resurrect.g at all (the engine drops them: docs/firmware-behaviour.md#system-files).
 inline bool judged_elsewhere(const Machine& m, const Graph& g, NodeId id) {
@@ -43,69 +68,62 @@ inline bool judged_elsewhere(const Machine& m, const Graph& g, NodeId id) {
 }
 inline bool judged_elsewhere(const NodeContext& cx) { return judged_elsewhere(cx.machine, cx.graph, cx.id); }
 
-/// The M950 commands of the graph that name a device of one kind (`letter`): by number those that create it (with
-/// C), and those whose number is an expression. Built once per kind (Graph::derived) for later_creation.
-struct Creations {
-  std::unordered_map<int, std::vector<NodeId>> creates;
-  std::vector<NodeId> unknown;
-};
-inline const Creations& creations(const NodeContext& cx, char letter) {
-  return cx.graph.derived<Creations>(std::string("heat.m950.") + letter, [&] {
-    Creations out;
-    const auto all = static_cast<NodeId>(cx.graph.nodes.size());
-    tools::each_code_node(cx, 0, all, 'M', 950, [&](NodeId id, const tools::NodeCommand& k) {
-      auto v = get_int(*k.pf, *k.c, letter);
-      if (v.unknown()) out.unknown.push_back(id);
-      else if (v.known() && k.pf->find(*k.c, 'C')) out.creates[static_cast<int>(v.value)].push_back(id);
-      return false;
-    });
-    return out;
-  });
+/// The M950 commands of the graph that create a device of one kind (`letter`, with C) by its number, and those
+/// whose number is an expression. Built once per kind (Graph::derived) for later_creation.
+inline const tools::DeviceIndex& creations(const NodeContext& cx, char letter) {
+  return tools::device_index(cx.machine, cx.graph, std::string("heat.m950.") + letter, 'M', 950,
+                             [&](const ParsedFile& pf, const Command& c) -> std::optional<DeviceRef> {
+                               auto v = get_int(pf, c, letter);
+                               if (v.unknown()) return DeviceRef{};
+                               if (v.known() && pf.find(c, 'C')) return DeviceRef{static_cast<int>(v.value), true};
+                               return std::nullopt;
+                             });
 }
 
 /// The later `M950 <letter>n C…` in this segment that creates device n; kNoNode if none. `unknown` is set when the
 /// first M950 on the way that may create it creates a device of that kind from an expression (it may be n).
 inline NodeId later_creation(const NodeContext& cx, char letter, int n, bool& unknown) {
-  const Creations& c = creations(cx, letter);
-  const NodeId end = cx.segment().end;
-  auto first_after = [&](const std::vector<NodeId>& ids) {
-    auto it = std::upper_bound(ids.begin(), ids.end(), cx.id);
-    return it != ids.end() && *it < end ? *it : kNoNode;
-  };
-  const auto it = c.creates.find(n);
-  const NodeId creates = it == c.creates.end() ? kNoNode : first_after(it->second);
-  const NodeId maybe = first_after(c.unknown);
-  unknown = maybe < creates;
-  return unknown ? maybe : creates;
+  return creations(cx, letter).first_later(cx, n, &unknown);
+}
+
+/// The commands of code M`number` by the heater they name (heater_named; M307/M570 without H and H{…} apart, as
+/// unknown); built once per graph.
+inline const tools::DeviceIndex& naming_heater(const NodeContext& cx, int number) {
+  return tools::device_index(cx.machine, cx.graph, "heat.named.M" + std::to_string(number), 'M', number,
+                             [](const ParsedFile& pf, const Command& c) { return std::optional(heater_named(pf, c)); });
 }
 
 using tools::runs_again;
 
+/// The node ranges [begin, end) that ran after node `from` and before this one: in this segment, or, for a macro
+/// run after boot, from `from` to the end of its segment (the boot) and then this segment up to here.
+inline std::vector<std::pair<NodeId, NodeId>> since(const NodeContext& cx, NodeId from) {
+  const Segment& here = cx.segment();
+  if (from >= here.begin) return {{from + 1, cx.id}};
+  std::vector<std::pair<NodeId, NodeId>> out;
+  for (const Segment& sg : cx.graph.segments)
+    if (from >= sg.begin && from < sg.end) out.emplace_back(from + 1, sg.end);
+  out.emplace_back(here.begin, cx.id);
+  return out;
+}
+
 /// Calls f(id, command) for each command of code `letter` `number` (no fraction; `number` 0…1023) that ran after
-/// node `from` and before this one: in this segment, or, for a macro run after boot, from `from` to the end of its
-/// segment (the boot) and then this segment up to here (tools::each_code_node).
+/// node `from` and before this one (since(), tools::each_code_node).
 template <class F>
 void each_since_code(const NodeContext& cx, NodeId from, char letter, int number, F f) {
-  auto walk = [&](NodeId b, NodeId e) {
+  for (const auto& [b, e] : since(cx, from))
     tools::each_code_node(cx, b, e, letter, number, [&](NodeId id, const tools::NodeCommand& k) {
       f(id, k);
       return false;
     });
-  };
-  const Segment& here = cx.segment();
-  if (from >= here.begin) return walk(from + 1, cx.id);
-  for (const Segment& sg : cx.graph.segments)
-    if (from >= sg.begin && from < sg.end) walk(from + 1, sg.end);
-  walk(here.begin, cx.id);
 }
 
 /// The M308 commands that create sensors, by sensor number, and those whose sensor number is an expression: as
 /// graph nodes in node order, and whether any command on the card (in or out of the graph). Built once per graph
 /// (Graph::derived): a card of thousands of heaters asked every M308 for each M950.
 struct M308Index {
-  std::unordered_map<int64_t, std::vector<NodeId>> creating;  // S n with a Y type
-  std::vector<NodeId> unknown;                                // S {expr}
-  std::set<int64_t> card_creates;                             // on the card, in any file
+  tools::DeviceIndex creating;     // S n with a Y type; S {expr}
+  std::set<int64_t> card_creates;  // on the card, in any file
   bool card_unknown = false;
 };
 inline const M308Index& m308_index(const Machine& m, const Graph& g) {
@@ -122,8 +140,7 @@ inline const M308Index& m308_index(const Machine& m, const Graph& g) {
     }
     tools::each_code_command(m, g, 'M', 308, [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
       auto S = get_int(pf, c, 'S');
-      if (S.unknown()) out.unknown.push_back(id);
-      else if (S.known() && pf.find(c, 'Y')) out.creating[S.value].push_back(id);
+      if (S.unknown() || (S.known() && pf.find(c, 'Y'))) out.creating.add(id, S.known(), S.known() ? S.value : 0);
     });
     return out;
   });
@@ -132,11 +149,7 @@ inline const M308Index& m308_index(const Machine& m, const Graph& g) {
 /// The later `M308 S<n> Y…` in this segment that creates sensor n; kNoNode if none. `unknown` as for
 /// later_creation: the first such M308 has an expression for its sensor number (it may be n).
 inline NodeId later_sensor(const NodeContext& cx, int n, bool& unknown) {
-  const M308Index& index = m308_index(cx.machine, cx.graph);
-  const NodeId known = tools::first_later(cx, index.creating, int64_t{n});
-  const NodeId maybe = tools::first_later(cx, index.unknown);
-  unknown = maybe < known;
-  return std::min(known, maybe);
+  return m308_index(cx.machine, cx.graph).creating.first_later(cx, n, &unknown);
 }
 
 /// Does any M308 on the card create sensor n? A macro run after boot may create it. An M308 whose sensor number is

@@ -55,13 +55,7 @@ M307 H1 R2.43 K0.56 D5.5 E1.35 S1.00 B0 V24.0
 
 /// Is heater h named later (after `from`) by a command of this code, which sets again what the rejected one meant to?
 bool set_later(const NodeContext& cx, NodeId from, int number, int h) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (!k.is('M', number)) return false;
-    const heat::DeviceRef r = heat::heater_named(*k.pf, *k.c);
-    return !r.known || r.number == h;
-  }) != kNoNode;
+  return heat::naming_heater(cx, number).first_after(from, cx.segment().end, h) != kNoNode;
 }
 
 /// What the heater is left with once this command is rejected.
@@ -73,9 +67,7 @@ std::string consequence(const NodeContext& cx, int code, int h, NodeId create) {
                                           : "the heater has no model, so it stays disabled ('bad model')";
     case 143: {
       if (set_later(cx, after, 143, h)) return "this monitor is not installed (a later M143 sets one)";
-      const bool defaults = cx.graph.nodes.find_if(after + 1, cx.segment().end, [&](NodeId, const Node& n) {
-        return n.kind == NodeKind::Command && heat::names_heater(tools::command_at(cx.machine, n), h);
-      }) != kNoNode;
+      const bool defaults = heat::later_installing_defaults(cx, after, h) != kNoNode;
       return defaults ? "the heater has only the default over-temperature monitor"
                       : "the heater has no over-temperature monitor at all (its limit is 2000 °C)";
     }

@@ -147,30 +147,28 @@ bool judged_elsewhere(const NodeContext& cx, NodeId id) {
 /// kNoNode when there is none, or when something between may have changed the heater's monitors (an M950,
 /// M563, M140 or M141 for it, an M143 from unknown values, one that may not run).
 NodeId earlier_m143(const NodeContext& cx, const Monitor& m, int own_sensor, NodeId created, Monitor& old) {
-  NodeId found = kNoNode;
-  // Only what ran since the heater was created counts: the walk starts there (not at the start of the boot, which
-  // made a file of many heaters and monitors quadratic).
+  // Only what ran since the heater was created counts, and of that the last command that set this monitor or may
+  // have changed the heater's monitors decides: the walk goes back from here over those codes and stops at it.
   const NodeId from = created == kNoNode ? cx.segment().begin : std::max(cx.segment().begin, created);
-  cx.graph.nodes.find_if(from, cx.id, [&](NodeId id, const Node& n) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (!k) return false;
-    if (k.is('M', 950)) {
-      const auto H = get_int(*k.pf, *k.c, 'H');
-      if (!H.absent() && (!H.known() || H.value == m.heater)) found = kNoNode;  // a new heater: new monitors
-    } else if (heat::names_heater(k, m.heater)) {
-      found = kNoNode;  // may install the default monitors again
-    } else if (k.is('M', 143)) {
-      const Monitor o = monitor_of(*k.pf, *k.c, own_sensor);
-      if (o.kind == Monitor::Kind::Report || (o.heater_known && o.heater != m.heater)) return false;
-      if (o.kind == Monitor::Kind::Unknown) found = kNoNode;
-      else if (o.slot == m.slot) {
-        const bool usable = certain(cx.graph, id) && !judged_elsewhere(cx, id);
-        found = usable ? id : kNoNode;
-        if (usable) old = o;
-      }
-    }
-    return false;
-  });
+  NodeId found = kNoNode;
+  tools::each_code_node_backward(cx, from, cx.id, 'M', {950, 563, 140, 141, 143},
+                                 [&](NodeId id, const tools::NodeCommand& k) {
+                                   if (k.is('M', 950)) {
+                                     const auto H = get_int(*k.pf, *k.c, 'H');
+                                     return !H.absent() && (!H.known() || H.value == m.heater);  // a new heater
+                                   }
+                                   if (!k.is('M', 143)) return heat::names_heater(k, m.heater);  // the defaults
+                                   const Monitor o = monitor_of(*k.pf, *k.c, own_sensor);
+                                   if (o.kind == Monitor::Kind::Report || (o.heater_known && o.heater != m.heater))
+                                     return false;
+                                   if (o.kind == Monitor::Kind::Unknown || o.slot != m.slot)
+                                     return o.kind == Monitor::Kind::Unknown;
+                                   if (certain(cx.graph, id) && !judged_elsewhere(cx, id)) {
+                                     found = id;
+                                     old = o;
+                                   }
+                                   return true;
+                                 });
   return found;
 }
 

@@ -2,6 +2,8 @@
 // its default over-temperature monitor.
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "lint/engine/rule.h"
 #include "rules/heat_helpers.h"
 
@@ -65,24 +67,19 @@ void check(const NodeContext& cx, Sink& out) {
     const NodeId create = heat::later_creation(cx, 'H', h, unknown);
     if (unknown) return;
     if (create == kNoNode) continue;
-    bool model = false;
-    const bool closed = cx.graph.nodes.find_if(create + 1, seg.end, [&](NodeId, const Node& n) {
-      if (n.kind != NodeKind::Command) return false;
-      const tools::NodeCommand k = tools::command_at(cx.machine, n);
-      const Command& kc = *k.c;
-      if (kc.letter != 'M' || kc.fraction >= 0) return false;
-      if (kc.number == 143) {
-        auto v = get_int(*k.pf, kc, 'H');
-        const bool same = v.unknown() || (v.known() ? v.value == h : h == 1);
-        return same && k.pf->find(kc, 'S') != nullptr;
-      }
-      if (kc.number == 307) {
-        auto v = get_int(*k.pf, kc, 'H');
-        if (v.known() && v.value == h) model = true;
-        return false;
-      }
-      return heat::names_heater(k, h);
-    }) != kNoNode;
+    // Closed when, after the M950, an M143 with S sets a monitor of the heater or an M563/M140/M141 names it again.
+    const tools::DeviceIndex& monitors =
+        tools::device_index(cx.machine, cx.graph, "heater_monitor_skipped.m143_s", 'M', 143,
+                            [](const ParsedFile& pf, const Command& kc) -> std::optional<heat::DeviceRef> {
+                              if (!pf.find(kc, 'S')) return std::nullopt;
+                              auto v = get_int(pf, kc, 'H');
+                              if (v.unknown()) return heat::DeviceRef{};
+                              return heat::DeviceRef{v.known() ? static_cast<int>(v.value) : 1, true};
+                            });
+    const bool closed = monitors.first_after(create, seg.end, h) != kNoNode ||
+                        heat::later_installing_defaults(cx, create, h) != kNoNode;
+    const bool model =
+        tools::first_after(tools::ids_of(heat::naming_heater(cx, 307).known, int64_t{h}), create, seg.end) != kNoNode;
     if (closed) continue;
     const bool bed = c.number != 563;
     out.report(kMeta, cx.at(c.span),

@@ -2,8 +2,11 @@
 // the kinematics type, which replaces the kinematics object and loses them.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lint/engine/rule.h"
 #include "rules/heat_helpers.h"
@@ -68,16 +71,45 @@ std::string kinematics_name(int k) {
   }
 }
 
-bool is_kinematics_code(const CommandTable::Code& code) {
-  return code.letter == 'M' && code.fraction < 0 && (code.number == 669 || code.number == 667 || code.number == 665);
-}
+/// The commands that set a kinematics type (M669 K, M667 S, M665 L/D) and the M671s that set leadscrews, in node
+/// order; built once per graph and firmware. Each M671 used to walk every later node: a config of thousands of
+/// M671s inside `if` blocks and no change of type asked them all for each.
+struct KinematicsIndex {
+  std::vector<NodeId> ids;                 // the commands that set a type
+  std::vector<int> type;                   // the type each sets, -1 when unknown
+  std::vector<bool> maybe;                 // inside an if/while
+  std::vector<size_t> next_other;          // the next entry that sets another type (ids.size() when none)
+  std::vector<NodeId> m671, m671_certain;  // the M671s with X or Y; those not inside an if/while
+};
 
-/// Does an M671 that sets leadscrews run after node `from` in this segment?
-bool m671_later(const NodeContext& cx, NodeId from) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    const tools::NodeCommand nc = tools::command_at(cx.machine, n);
-    return nc.is('M', 671) && (nc.pf->find(*nc.c, 'X') || nc.pf->find(*nc.c, 'Y'));
-  }) != kNoNode;
+const KinematicsIndex& kinematics_index(const NodeContext& cx) {
+  const Version fw = cx.state.firmware;
+  return cx.graph.derived<KinematicsIndex>(fmt::format("leadscrews.kinematics.{}", fw.str()), [&] {
+    KinematicsIndex out;
+    std::vector<std::pair<NodeId, std::pair<int, bool>>> sets;
+    for (const int code : {669, 667, 665})
+      tools::each_code_command(cx.machine, cx.graph, 'M', code,
+                               [&](NodeId id, const Node& n, const ParsedFile& pf, const Command& c) {
+                                 if (const std::optional<int> k = kinematics_set_by(pf, c, fw))
+                                   sets.push_back({id, {*k, n.maybe}});
+                               });
+    std::sort(sets.begin(), sets.end());
+    for (const auto& [id, set] : sets) {
+      out.ids.push_back(id);
+      out.type.push_back(set.first);
+      out.maybe.push_back(set.second);
+    }
+    out.next_other.assign(out.ids.size(), out.ids.size());
+    for (size_t i = out.ids.size(); i-- > 1;)
+      out.next_other[i - 1] = out.type[i] != out.type[i - 1] ? i : out.next_other[i];
+    tools::each_code_command(cx.machine, cx.graph, 'M', 671,
+                             [&](NodeId id, const Node& n, const ParsedFile& pf, const Command& c) {
+                               if (!pf.find(c, 'X') && !pf.find(c, 'Y')) return;
+                               out.m671.push_back(id);
+                               if (!n.maybe) out.m671_certain.push_back(id);
+                             });
+    return out;
+  });
 }
 
 void check(const NodeContext& cx, Sink& out) {
@@ -87,25 +119,18 @@ void check(const NodeContext& cx, Sink& out) {
   const MachineState& s = cx.state;
   if (!s.kinematics_known || s.unknown_baseline || heat::judged_elsewhere(cx)) return;
   if (!pf.find(c, 'X') && !pf.find(c, 'Y')) return;  // reports only
-  int current = s.kinematics, to = -1;
-  bool silent = false;
-  bool superseded = false;  // a later M671 sets the leadscrews again before any change: it is judged instead
-  const NodeId change = cx.graph.nodes.find_if(cx.id + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const ParsedFile& npf = cx.machine.unit(n.unit).parsed;
-    const CommandTable::Code code = npf.commands.code(n.index);
-    if (code.is('M', 671) && !n.maybe) {
-      const Command nc = npf.commands[n.index];
-      if (npf.find(nc, 'X') || npf.find(nc, 'Y')) return superseded = true;
-    }
-    if (!is_kinematics_code(code)) return false;
-    const std::optional<int> k = kinematics_set_by(npf, npf.commands[n.index], s.firmware);
-    if (!k || *k == current) return false;
-    if (*k < 0 || n.maybe) return silent = true;  // the type may change, or become anything
-    to = *k;
-    return true;
-  });
-  if (change == kNoNode || silent || superseded || m671_later(cx, change)) return;
+  const int current = s.kinematics;
+  const KinematicsIndex& kin = kinematics_index(cx);
+  const NodeId end = cx.segment().end;
+  // The first later command that changes the type (one that sets the current type changes nothing), unless a later
+  // M671 (not in an if/while) sets the leadscrews again before it: that one is judged instead.
+  size_t at = static_cast<size_t>(std::upper_bound(kin.ids.begin(), kin.ids.end(), cx.id) - kin.ids.begin());
+  if (at < kin.ids.size() && kin.type[at] == current) at = kin.next_other[at];
+  const NodeId change = at < kin.ids.size() && kin.ids[at] < end ? kin.ids[at] : kNoNode;
+  if (change == kNoNode || tools::first_after(kin.m671_certain, cx.id, end) < change) return;
+  const bool silent = kin.type[at] < 0 || kin.maybe[at];  // the type may change, or become anything
+  const int to = kin.type[at];
+  if (silent || tools::first_after(kin.m671, change, end) != kNoNode) return;
   const tools::NodeCommand nc = tools::command_at(cx.machine, cx.graph, change);
   Report rep = out.report(
       kMeta, cx.at(c.span),

@@ -43,12 +43,10 @@ M501    ; load the offsets measured by a probing macro and saved with M500
 )md",
 };
 
+/// Did a G28 (not inside an if/while) run earlier in the boot sequence?
 bool homed_before(const NodeContext& cx) {
-  return cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command || n.maybe) return false;
-    const CommandTable::Code c = cx.machine.unit(n.unit).parsed.commands.code(n.index);
-    return c.is('G', 28);
-  }) != kNoNode;
+  const std::vector<NodeId>& g28s = tools::code_index(cx.machine, cx.graph, 'G', 28).certain;
+  return tools::last_before(g28s, cx.segment().begin, cx.id) != kNoNode;
 }
 
 void check(const NodeContext& cx, Sink& out) {

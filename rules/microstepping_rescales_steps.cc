@@ -1,6 +1,8 @@
 // RRF204 microstepping-rescales-steps: an M92 rescaled by a later M350 and then replaced by another M92.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "lint/engine/rule.h"
 #include "rules/lex_common.h"
 #include "rules/motion_helpers.h"
@@ -70,19 +72,17 @@ int64_t microstepping(const tools::NodeCommand& k, char letter) {
 /// x16; -1 when it is unknown (a conditional M350, an expression, a segment that does not start at power-up).
 int64_t microstepping_before(const NodeContext& cx, NodeId id, char letter) {
   const Segment& seg = cx.segment();
-  for (NodeId i = id; i-- > seg.begin;) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, i);
-    if (k.is('M', 350) && k.pf->find(*k.c, letter)) return microstepping(k, letter);
-  }
+  const NodeId last = tools::last_before(tools::code_index(cx.machine, cx.graph, 'M', 350)[letter], seg.begin, id);
+  if (last != kNoNode) return microstepping(tools::command_at(cx.machine, cx.graph, last), letter);
   return seg.boot && !cx.state.unknown_baseline ? 16 : -1;
 }
 
-/// The next command after `from` that is an M92 or M350 naming `letter`.
-NodeId next_for(const NodeContext& cx, NodeId from, char letter, bool m92_only) {
-  return cx.graph.nodes.find_if(from + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    return (k.is('M', 92) || (!m92_only && k.is('M', 350))) && k.pf->find(*k.c, letter);
-  });
+/// The next command after `from` that is an M92 or M350 naming `letter` (from the indexes of both by letter: each
+/// M92 used to walk the nodes before and after it).
+NodeId next_for(const NodeContext& cx, NodeId from, char letter) {
+  const NodeId end = cx.segment().end;
+  return std::min(tools::first_after(tools::code_index(cx.machine, cx.graph, 'M', 92)[letter], from, end),
+                  tools::first_after(tools::code_index(cx.machine, cx.graph, 'M', 350)[letter], from, end));
 }
 
 /// The first M350 after this M92 that changes the microstepping of `letter`, and the M92 that then replaces the
@@ -96,7 +96,7 @@ Rescale find_rescale(const NodeContext& cx, char L) {
   Rescale r;
   int64_t current = microstepping_before(cx, cx.id, L);
   if (current <= 0) return {};
-  for (NodeId at = next_for(cx, cx.id, L, false); at != kNoNode; at = next_for(cx, at, L, false)) {
+  for (NodeId at = next_for(cx, cx.id, L); at != kNoNode; at = next_for(cx, at, L)) {
     const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, at);
     if (k.is('M', 92)) {
       if (r.m350 == kNoNode || k.node.maybe) return {};

@@ -207,13 +207,19 @@ inline MappingChange mapping_change(const tools::NodeCommand& k, const DriveMap&
   return out;
 }
 
-/// Where the walk for the M584 at `m` may start. When it creates an axis, any earlier value for that axis counts:
-/// the start of the segment. Otherwise only settings of a remapped letter since the latest earlier M584 that names
-/// that letter can depend on it (that M584 cleared the older ones: see dependents()), so the walk starts at the
-/// earliest of those M584s instead of at the start of the boot, which made a file of many M584s quadratic.
+/// Where the walk for the M584 at `m` may start. When it creates an axis, any earlier value for that axis counts: the
+/// first command since the start of the segment that names the letter (from the indexes of each axis code by letter),
+/// not the start of the segment itself, which made a file of many M584s that each create an axis (one the board
+/// lacks) quadratic. Settings of a remapped letter count only since the latest earlier M584 that names that letter
+/// (that M584 cleared the older ones: see dependents()), so for those the walk starts at the earliest of such M584s.
 inline NodeId walk_start(const NodeContext& cx, const MappingChange& change, NodeId m) {
   const NodeId begin = cx.segment().begin;
-  if (!change.created.empty()) return begin;
+  NodeId created = m;  // the first command that names an axis it creates
+  for (const char L : change.created) {
+    created = std::min(created, tools::first_in(tools::code_index(cx.machine, cx.graph, 'G', 31)[L], begin, m));
+    for (const int32_t code : kAxisMCodes)
+      created = std::min(created, tools::first_in(tools::code_index(cx.machine, cx.graph, 'M', code)[L], begin, m));
+  }
   std::string open = change.remapped;  // letters whose latest earlier M584 is not found yet
   NodeId start = m;
   const std::vector<NodeId>& m584s = *cx.graph.code_nodes(cx.machine, 'M', 584);
@@ -224,7 +230,7 @@ inline NodeId walk_start(const NodeContext& cx, const MappingChange& change, Nod
     std::erase_if(open, [&](char L) { return bool(k.pf->find(*k.c, L)); });
     start = *it;
   }
-  return start;
+  return std::min(start, created);
 }
 
 /// The earlier commands in this segment that lose effect because of the M584 at node `m`, whose drive mapping

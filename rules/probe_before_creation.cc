@@ -2,6 +2,8 @@
 // that re-creates a probe after a G31 set it (the G31 values are lost).
 #include <fmt/format.h>
 
+#include <optional>
+
 #include "lint/engine/rule.h"
 #include "rules/heat_helpers.h"
 
@@ -73,17 +75,27 @@ bool g31_sets(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
-/// Does this node's G31 set probe k (or may it: K{…})?
-bool g31_for(const tools::NodeCommand& nc, int k) {
-  if (!nc.is('G', 31) || !g31_sets(*nc.pf, *nc.c)) return false;
-  const heat::DeviceRef r = probe_named(*nc.pf, *nc.c);
-  return !r.known || r.number == k;
+/// The M558s with P (which create a probe) and the G31s that set something, by the probe they name, built once per
+/// graph: a config of thousands of G31s asked each later M558 for each.
+const tools::DeviceIndex& m558_creating(const NodeContext& cx) {
+  return tools::device_index(cx.machine, cx.graph, "probe.m558_p", 'M', 558,
+                             [](const ParsedFile& pf, const Command& c) -> std::optional<heat::DeviceRef> {
+                               if (!pf.find(c, 'P')) return std::nullopt;
+                               return probe_named(pf, c);
+                             });
+}
+
+/// The G31s that set something, by the probe they name; built once per graph.
+const tools::DeviceIndex& g31_setting(const NodeContext& cx) {
+  return tools::device_index(
+      cx.machine, cx.graph, "probe.g31_sets", 'G', 31, [](const ParsedFile& pf, const Command& c) {
+        return g31_sets(pf, c) ? std::optional<heat::DeviceRef>(probe_named(pf, c)) : std::nullopt;
+      });
 }
 
 /// Is probe k set by a G31 after node `from` in this segment?
 bool g31_later(const NodeContext& cx, NodeId from, int k) {
-  return tools::find_code(cx, from, cx.segment().end, 'G', 31,
-                          [&](const tools::NodeCommand& nc) { return g31_for(nc, k); }) != kNoNode;
+  return g31_setting(cx).first_after(from, cx.segment().end, k) != kNoNode;
 }
 
 void check_g31(const NodeContext& cx, Sink& out) {
@@ -93,13 +105,8 @@ void check_g31(const NodeContext& cx, Sink& out) {
   if (s.firmware < kRrf3_1 && !pf.find(c, 'K')) return;  // 3.0: G31 without K addresses the current probe
   const heat::DeviceRef k = probe_named(pf, c);
   if (!k.known || s.probes.count(k.number)) return;
-  bool unknown = false;
-  const NodeId create = !cx.in_boot() ? kNoNode : tools::find_later(cx, 'M', 558, [&](const tools::NodeCommand& n) {
-    if (!n.pf->find(*n.c, 'P')) return false;
-    const heat::DeviceRef r = probe_named(*n.pf, *n.c);
-    unknown = unknown || !r.known;
-    return !r.known || r.number == k.number;
-  });
+  bool unknown = false;  // the first M558 P that may create it names an expression
+  const NodeId create = !cx.in_boot() ? kNoNode : m558_creating(cx).first_later(cx, k.number, &unknown);
   if (unknown || (create != kNoNode && heat::runs_again(cx, create))) return;  // set once the probe exists
   const std::string where = create == kNoNode ? fmt::format("no 'M558 K{} P…' creates it anywhere", k.number)
                                               : "the M558 that creates it comes only later";
@@ -124,9 +131,8 @@ void check_m558(const NodeContext& cx, Sink& out) {
   auto it = s.probes.find(k.number);
   if (it == s.probes.end() || it->second.maybe || it->second.created == kNoNode) return;
   NodeId g31 = kNoNode;  // the last G31 that set the probe since its creation
-  heat::each_since_code(cx, it->second.created, 'G', 31, [&](NodeId id, const tools::NodeCommand& nc) {
-    if (g31_for(nc, k.number)) g31 = id;
-  });
+  for (const auto& [b, e] : heat::since(cx, it->second.created))
+    if (const NodeId last = g31_setting(cx).last_in(b, e, k.number); last != kNoNode) g31 = last;
   if (g31 == kNoNode || g31_later(cx, cx.id, k.number)) return;  // set again after
   Report rep = out.report(kMeta, Severity::Warning, cx.at(c.span),
                           fmt::format("{} re-creates Z probe {} (P deletes it and makes a new one with the defaults), "

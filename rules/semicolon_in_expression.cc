@@ -48,9 +48,14 @@ void check(const FileContext& cx, Sink& out) {
   for (const Span cut : pf.semicolon_cuts) {
     uint32_t semi = cut.end;
     while (semi < t.size() && lex::is_blank(t[semi])) ++semi;
-    bool meta = false;
-    for (const Line& line : pf.lines)
-      if (line.kind == LineKind::Meta && line.span.contains(cut.begin)) meta = true;
+    // The line of the cut: the last that starts at or before it (lines are in order).
+    size_t lo = 0, hi = pf.lines.size();
+    while (hi - lo > 1) {
+      const size_t mid = lo + (hi - lo) / 2;
+      (pf.lines.span(mid).begin <= cut.begin ? lo : hi) = mid;
+    }
+    const bool meta =
+        lo < pf.lines.size() && pf.lines.kind(lo) == LineKind::Meta && pf.lines.span(lo).contains(cut.begin);
     out.report(kMeta, cx.at(Span{semi, semi + 1}),
                fmt::format("';' inside an expression starts a comment: RRF reads only '{}' and fails with an "
                            "expression error{}",

@@ -17,6 +17,7 @@
 #include "lint/base/strings.h"
 #include "lint/boot/commands.h"
 #include "lint/engine/rule.h"
+#include "rules/node_index.h"
 
 namespace rrflint::tools {
 
@@ -111,6 +112,28 @@ NodeId each_code_node(const NodeContext& cx, NodeId begin, NodeId end, char lett
   return kNoNode;
 }
 
+/// Calls f(id, command) for each command node in [begin, end) whose code is `letter` with one of `numbers` (no
+/// fraction; each 0…1023), latest first, until it returns true; returns that node, or kNoNode. For "the last
+/// command before this one that …": it stops at the nearest, where a forward walk visits them all.
+template <class F>
+NodeId each_code_node_backward(const NodeContext& cx, NodeId begin, NodeId end, char letter,
+                               std::initializer_list<int> numbers, F f) {
+  std::vector<std::pair<const std::vector<NodeId>*, size_t>> lists;  // each code's nodes, and how many are before
+  for (const int number : numbers)
+    if (const std::vector<NodeId>* ids = cx.graph.code_nodes(cx.machine, letter, number))
+      lists.emplace_back(ids, std::lower_bound(ids->begin(), ids->end(), end) - ids->begin());
+  for (;;) {
+    std::pair<const std::vector<NodeId>*, size_t>* latest = nullptr;  // the list whose next node is the latest
+    for (auto& l : lists)
+      if (l.second > 0 && (!latest || (*l.first)[l.second - 1] > (*latest->first)[latest->second - 1])) latest = &l;
+    if (!latest) return kNoNode;
+    const NodeId id = (*latest->first)[--latest->second];
+    if (id < begin) return kNoNode;
+    const NodeCommand k = command_at(cx.machine, cx.graph, id);
+    if (k.c->fraction < 0 && f(id, k)) return id;
+  }
+}
+
 /// The first command node in (from, to) with code `letter` `number` (no fraction) for which `pred(command)` holds;
 /// kNoNode if none.
 template <class Pred>
@@ -171,33 +194,6 @@ inline bool runs_again(const NodeContext& cx, NodeId from) {
   return runs_again(cx.graph, cx.self, from, cx.segment().end);
 }
 
-/// Calls f(id, node, file, command) for each command node of code `letter` `number` (no fraction), in node order:
-/// what an index built once per graph (Graph::derived) walks.
-template <class F>
-void each_code_command(const Machine& m, const Graph& g, char letter, int number, F f) {
-  const std::vector<NodeId>* ids = g.code_nodes(m, letter, number);
-  if (!ids) return;
-  for (const NodeId id : *ids) {
-    const Node n = g.nodes[id];
-    const ParsedFile& pf = m.unit(n.unit).parsed;
-    if (pf.commands.code(n.index).fraction >= 0) continue;
-    f(id, n, pf, pf.commands[n.index]);
-  }
-}
-
-/// The first of `ids` (sorted) after the node at `cx`, in its segment; kNoNode if none.
-inline NodeId first_later(const NodeContext& cx, const std::vector<NodeId>& ids) {
-  auto next = std::upper_bound(ids.begin(), ids.end(), cx.id);
-  return next != ids.end() && *next < cx.segment().end ? *next : kNoNode;
-}
-
-/// first_later of the nodes an index keeps under `key` (none: kNoNode).
-template <class Map, class Key>
-NodeId first_later(const NodeContext& cx, const Map& index, const Key& key) {
-  auto it = index.find(key);
-  return it == index.end() ? kNoNode : first_later(cx, it->second);
-}
-
 /// Per tool number, the M563 nodes that define it with a known P, in node order. Built once per graph
 /// (Graph::derived): a config of thousands of tools asked for each G10 which of the thousands of M563 after it
 /// comes next, lexing each.
@@ -220,34 +216,13 @@ inline NodeId later_m563(const NodeContext& cx, int n) {
   return first_later(cx, m563_by_tool(cx.machine, cx.graph).by_tool, int64_t{n});
 }
 
-/// The M584 nodes (no fraction) by the axis letters they name, in node order; built once per graph
-/// (Graph::derived). A card that repeats its M584s thousands of times asked each later one, for each line naming a
-/// missing axis.
-struct M584ByLetter {
-  std::unordered_map<char, std::vector<NodeId>> by_letter;
-  std::unordered_map<char, std::vector<NodeId>> certain_by_letter;  // those not inside an if/while
-  std::vector<NodeId> certain;                                      // every M584 not inside an if/while
-};
-inline const M584ByLetter& m584_by_letter(const Machine& m, const Graph& g) {
-  return g.derived<M584ByLetter>("tools.m584_by_letter", [&] {
-    M584ByLetter out;
-    each_code_command(m, g, 'M', 584, [&](NodeId id, const Node& n, const ParsedFile& pf, const Command& c) {
-      if (!n.maybe) out.certain.push_back(id);
-      std::string seen;
-      for (const Param& p : pf.params(c))
-        if (p.letter != 0 && seen.find(p.letter) == std::string::npos) {
-          seen += p.letter;
-          out.by_letter[p.letter].push_back(id);
-          if (!n.maybe) out.certain_by_letter[p.letter].push_back(id);
-        }
-    });
-    return out;
-  });
-}
+/// The M584 nodes by the axis letters they name. A card that repeats its M584s thousands of times asked each later
+/// one, for each line naming a missing axis.
+inline const CodeIndex& m584_by_letter(const Machine& m, const Graph& g) { return code_index(m, g, 'M', 584); }
 
 /// The later M584 in this segment that names axis `letter`.
 inline NodeId later_m584_for(const NodeContext& cx, char letter) {
-  return first_later(cx, m584_by_letter(cx.machine, cx.graph).by_letter, letter);
+  return first_later(cx, m584_by_letter(cx.machine, cx.graph)[letter]);
 }
 
 /// Does any M584 on the card name axis `letter`? A macro run after boot may create the axis.

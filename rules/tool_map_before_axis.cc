@@ -105,7 +105,7 @@ void check_map(const NodeContext& cx, const M563Map& m, int tool, Sink& out) {
       // letter), so it is the need-th of those.
       std::string letters;
       for (const Axis& a : s.axes) letters += a.letter;
-      const tools::M584ByLetter& m584s = tools::m584_by_letter(cx.machine, cx.graph);
+      const tools::CodeIndex& m584s = tools::m584_by_letter(cx.machine, cx.graph);
       NodeId later = kNoNode;
       const ptrdiff_t need = static_cast<ptrdiff_t>(idx) + 1 - static_cast<ptrdiff_t>(letters.size());
       if (need <= 0) {

@@ -2,6 +2,11 @@
 // machine, or switches heaters on.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
 #include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
 
@@ -117,19 +122,30 @@ std::string file_name(std::string_view sd_path) {
   return std::string(slash == std::string_view::npos ? sd_path : sd_path.substr(slash + 1));
 }
 
+/// The G10s and M568s with S (which may set an active temperature) by the tool their P names, in node order;
+/// built once per graph. Each T used to walk every node before it.
+struct TemperatureSetters {
+  std::unordered_map<int64_t, std::vector<NodeId>> by_tool;
+};
+
 /// The last G10/M568 before this node that set an active temperature for tool n.
 NodeId temperature_origin(const NodeContext& cx, int n) {
-  NodeId found = kNoNode;
-  cx.graph.nodes.find_if(cx.segment().begin, cx.id, [&](NodeId j, const Node& nd) {
-    if (nd.kind != NodeKind::Command) return false;
-    const ParsedFile& pf = cx.machine.unit(nd.unit).parsed;
-    const Command& c = pf.commands[nd.index];
-    if (!c.is('G', 10) && !c.is('M', 568)) return false;
-    auto P = get_int(pf, c, 'P');
-    if (P.known() && P.value == n && pf.find(c, 'S')) found = j;
-    return false;
+  const TemperatureSetters& t = cx.graph.derived<TemperatureSetters>("tool_select.temperature_setters", [&] {
+    std::vector<std::pair<NodeId, int64_t>> found;
+    for (const int code : {10, 568}) {
+      const char letter = code == 10 ? 'G' : 'M';
+      tools::each_code_command(cx.machine, cx.graph, letter, code,
+                               [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
+                                 auto P = get_int(pf, c, 'P');
+                                 if (P.known() && pf.find(c, 'S')) found.push_back({id, P.value});
+                               });
+    }
+    std::sort(found.begin(), found.end());
+    TemperatureSetters out;
+    for (const auto& [id, tool] : found) out.by_tool[tool].push_back(id);
+    return out;
   });
-  return found;
+  return tools::last_before(tools::ids_of(t.by_tool, int64_t{n}), cx.segment().begin, cx.id);
 }
 
 void check(const NodeContext& cx, Sink& out) {

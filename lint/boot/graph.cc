@@ -196,7 +196,11 @@ void Builder::assign_until(const FileUnit& u, FileValues& fv, uint32_t line) {
     if (l.meta == MetaKind::Global || (l.meta == MetaKind::Set && name.starts_with("global."))) scope = &globals_;
     if (l.meta == MetaKind::Set) name.remove_prefix(name.find('.') + 1);  // "global.x" / "var.x": the parser checked
     // An element (`set global.a[1] = …`), a value set in a block, or anything not constant: unknown from here.
-    const bool element = pf.text(Span{l.meta_name.end, l.meta_arg.begin}).find('[') != std::string_view::npos;
+    // Between the name and the value, within the line: a line with no name (`var = 12`, a syntax error) has an empty
+    // name span at offset 0, and searching from there searched the whole file before it, for each such line.
+    const uint32_t after_name = std::max(l.meta_name.end, l.span.begin);
+    const bool element = after_name < l.meta_arg.begin &&
+                         pf.text(Span{after_name, l.meta_arg.begin}).find('[') != std::string_view::npos;
     const ConstValue v =
         element || l.conditional || l.in_loop ? ConstValue{} : const_eval(pf.text(l.meta_arg), env(fv));
     if (v.known()) (*scope)[std::string(name)] = v;
