@@ -158,12 +158,7 @@ struct JobRun {
       gitignore.prefetch(files);
     }
     note_unlinted(job, eff, *r.machine, t);
-    if (r.graph.truncated)
-      warning(
-          fmt::format("{}: the files run to more than {} million commands in all (a macro called many times "
-                      "over, or a very large file): the machine rules followed those only, and say nothing of the "
-                      "rest",
-                      job.title, r.graph.nodes.size() / 1'000'000));
+    if (r.graph.truncated) warning(truncated_warning(job.title, eff.lint.max_graph_nodes));
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
       if (reportable(*r.machine->unit(i).source)) ++t.linted;
   }
@@ -405,6 +400,14 @@ void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const C
 }
 
 }  // namespace
+
+std::string truncated_warning(const std::string& title, size_t nodes) {
+  const std::string count = nodes >= 1'000'000 ? fmt::format("{} million", nodes / 1'000'000) : std::to_string(nodes);
+  return fmt::format(
+      "{}: the files run to more than {} commands in all (a macro called many times over, or a very "
+      "large file): the machine rules followed those only, and say nothing of the rest",
+      title, count);
+}
 
 unsigned default_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
 

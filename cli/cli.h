@@ -268,6 +268,10 @@ struct CheckOptions {
 unsigned default_threads();
 
 int run_check(const CliOptions& cli, const CheckOptions& co);
+/// What check (on stderr) and the language server (as a window message) say when a machine's graph stopped at its
+/// node limit (Graph::truncated), `nodes`: the machine rules then judged only the commands before it. `title`: the
+/// card.
+std::string truncated_warning(const std::string& title, size_t nodes);
 /// Colour for `--color MODE` on file descriptor `fd`: always/never, else FORCE_COLOR, NO_COLOR, TERM=dumb, a tty.
 bool use_color(const std::string& mode, int fd);
 

@@ -2,6 +2,7 @@
 // where each one came from.
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -151,6 +152,12 @@ void Settings::resolve(std::shared_ptr<const Config> config, Effective& out) {
   if (cfg)
     for (const auto& [code, s] : cfg->severity) out.lint.severity[code] = *s.value;
   out.lint.inline_suppressions = !cli_.no_inline_suppressions;
+  // Tests only: a lower node limit, to reach it without millions of nodes (docs/internals.md).
+  if (const char* n = std::getenv("RRFLINT_MAX_NODES"); n && *n) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(n, &end, 10);
+    if (*end == 0 && v > 0) out.lint.max_graph_nodes = static_cast<size_t>(v);
+  }
   out.docs_base = cfg && cfg->docs_url.value ? *cfg->docs_url.value : default_docs_base();
   if (cfg && !cfg->per_file_ignores.empty()) {
     std::error_code ec;

@@ -355,6 +355,24 @@ def test_lone_macro_beside_cards(s, card):
     check([codes(p) for p in publishes(seen, uri_of(config_of(card)))] == [ALL], "the card beside it")
 
 
+def test_graph_cut_at_node_limit(s, card):
+    # new.g calls leaf.g 50 times: 500 commands, past the limit of 200 this test's server has (RRFLINT_MAX_NODES).
+    write(os.path.join(card, "sys", "new.g"), 'M98 P"leaf.g"\n' * 50)
+    write(os.path.join(card, "sys", "leaf.g"), "G4 P0\n" * 10)
+    init(s)
+    config = config_of(card)
+    s.open(config)
+    shown = s.wait(lambda m: m.get("method") == "window/showMessage", "the message about the node limit")
+    check(shown["params"]["type"] == 2 and "more than 200 commands in all" in shown["params"]["message"],
+          f"a warning: {shown}")
+    s.notify("textDocument/didSave", {"textDocument": {"uri": uri_of(config)}})
+    seen = sync(s)
+    check(publishes(seen, uri_of(config)) != [], "linted again")
+    check(not [m for m in seen if m.get("method") == "window/showMessage"], "said once, not at every lint")
+
+
+test_graph_cut_at_node_limit.env = {"RRFLINT_MAX_NODES": "200"}
+
 TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
 
 

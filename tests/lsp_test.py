@@ -65,9 +65,9 @@ def utf16(s):
 class Server:
     """One `rrflint server` process; a thread parses what it writes into a queue of messages."""
 
-    def __init__(self, binary):
+    def __init__(self, binary, env=None):
         self.proc = subprocess.Popen([binary, "server"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE)
+                                     stderr=subprocess.PIPE, env=dict(os.environ, **env) if env else None)
         self.messages = queue.Queue()
         self.next_id = 0
         self.stderr = []
@@ -463,7 +463,7 @@ TESTS = [v for k, v in list(globals().items()) if k.startswith("test_")]
 def run_one(binary, test, card_source=CARD):
     card = tempfile.mkdtemp(prefix="rrflint-lsp-")
     shutil.copytree(card_source, card, dirs_exist_ok=True)
-    s = Server(binary)
+    s = Server(binary, getattr(test, "env", None))  # a test may set environment variables for its server
     result = {}
 
     def body():

@@ -266,6 +266,20 @@ TEST_CASE("matrix: huge and deep input is linted without a crash or a hang", "[c
   }
 }
 
+TEST_CASE("matrix: a graph cut at its node limit is said, not silent", "[cli][matrix]") {
+  TempTree t;
+  // 50 calls of a 10-line macro: 500 commands, past a limit lowered to 200 (RRFLINT_MAX_NODES, for tests).
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"calls.g\"\nM92 X80 X81\n");
+  t.write("p/sys/calls.g", repeat("M98 P\"leaf.g\"\n", 50));
+  t.write("p/sys/leaf.g", repeat("G4 P0\n", 10));
+  auto cut = run_rrflint(t.root(), "check p --format concise", "RRFLINT_MAX_NODES=200 timeout 60");
+  CHECK(contains(cut.err, "warning: p: the files run to more than 200 commands in all"));
+  CHECK(contains(cut.out, "RRF116"));  // a file rule: it reads the whole file, wherever the graph stopped
+  auto whole = run_guarded(t.root(), "check p --format concise");
+  CHECK(!contains(whole.err, "commands in all"));
+  CHECK(contains(whole.out, "RRF116"));
+}
+
 TEST_CASE("matrix: macro cycles and chains give one finding per cause", "[cli][matrix]") {
   TempTree t;
   t.write("cy/sys/config.g", "M98 P\"a.g\"\n");

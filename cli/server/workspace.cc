@@ -248,6 +248,14 @@ void Workspace::lint(const std::string& key) {
     }
   SourceManager& sm = snap->sm;
   snap->result = lint_machine(sm, snap->reader, builtin_rules(), eff.lint);
+  // A graph cut at its node limit leaves the machine rules silent on the rest: said once (as check says on stderr),
+  // and again only after a lint that was whole.
+  if (snap->result.graph.truncated && !m.truncated) {
+    const std::string why = "rrflint: " + cli::truncated_warning(snap->job.title, eff.lint.max_graph_nodes);
+    log_(2, why);
+    send_(notification("window/showMessage", {{"type", 2}, {"message", why}}));
+  }
+  m.truncated = snap->result.graph.truncated;
   auto uri_of = [&](FileId id) -> std::optional<std::string> {
     auto [it, fresh] = snap->uris.try_emplace(id);
     if (!fresh) return it->second;

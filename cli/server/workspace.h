@@ -120,6 +120,7 @@ class Workspace {
     std::set<std::string> published;  // URIs last published with findings
     std::unique_ptr<Snapshot> last;   // the last lint (none after a configuration error)
     std::string docs_base;            // of the last lint
+    bool truncated = false;           // the last lint's graph stopped at its node limit (and the user was told)
   };
 
   void place(Document& doc);    // finds the document's machine (and creates its entry)

@@ -16,14 +16,14 @@ inline void mark(const char* what) {
   if (kEnabled) mark_slow(what);
 }
 
-/// Prints how long the scope took, as "took <ms> ms  <what> <detail>", when tracing is on.
+/// Prints how long the scope took, as "took <ms> ms  <what> <detail>", when tracing is on (and `what` is not null).
 class Scope {
  public:
   Scope(const char* what, std::string_view detail = {}) : what_(what), detail_(detail) {
     if (kEnabled) start_ = now_ms();
   }
   ~Scope() {
-    if (kEnabled) report();
+    if (kEnabled && what_) report();
   }
   Scope(const Scope&) = delete;
   Scope& operator=(const Scope&) = delete;

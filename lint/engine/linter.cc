@@ -189,6 +189,7 @@ class ModelRun {
     go.firmware = res.target.version;
     go.sys_dir = options.sys_dir;
     go.include_entries = options.include_entries;
+    go.max_nodes = options.max_graph_nodes;
     res.graph = build_graph(m, go);
     trace::mark("graph");
     mb.emplace(m, res.graph, res.target.version, res.target.board);

@@ -34,6 +34,9 @@ struct LintOptions {
   unsigned threads = 1;
   size_t part_bytes = size_t{2} << 20;
   bool inline_suppressions = true;  // honour `; rrflint: disable=…` comments (--no-inline-suppressions: false)
+  /// The graph's node limit (GraphOptions::max_nodes). The front ends take RRFLINT_MAX_NODES from the environment
+  /// when it is set, for tests that need to reach the limit quickly.
+  size_t max_graph_nodes = 4'000'000;
   /// Per-file ignores (config file): is rule `code` switched off for this file? Null: never.
   std::function<bool(const SourceFile&, std::string_view code)> ignored_in_file;
   /// Tests only: call every check_node rule on every node, ignoring the rules' `on` lists. The fixture runner

@@ -68,13 +68,25 @@ void index_codes(ParsedFile& pf) {
     w = written.begin();
   }
   uint32_t pos = 0;
-  for (size_t k = 0; k < at.size(); ++k) {
+  auto place = [&](size_t k) {  // key k's commands go next
     const uint32_t count = at[k];
     at[k] = pos;
-    if (count == 0) continue;
+    if (count == 0) return;
     pos += count;
     pf.code_keys_.push_back(static_cast<uint16_t>(k));
     pf.code_start_.push_back(pos);
+  };
+  if (t.size() * 8 < at.size()) {
+    // Few commands (a line parsed on its own, as a fix checks its edit): only the keys they use, not all ~2,000.
+    std::vector<uint16_t> keys;
+    t.each_rec([&](size_t, const detail::CommandRec& r) {
+      keys.push_back(static_cast<uint16_t>(code_key(detail::letter_of(r.bits), r.number)));
+    });
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    for (const uint16_t k : keys) place(k);
+  } else {
+    for (size_t k = 0; k < at.size(); ++k) place(k);
   }
   pf.code_order_.resize(pos);
   if (written.empty()) {

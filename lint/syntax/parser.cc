@@ -36,11 +36,14 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     lp.fast_lines = opts.fast_lines;
     lp.parse_lines(0, file.line_count(), any_nul, any_del);
   }
-  trace::mark("parse: lines");
+  // Only a file of some size is traced: a rule's fix check parses single lines, one per finding, and a trace line
+  // (which reads the process's memory use) for each made RRFLINT_TRACE's times ten times the real ones.
+  const bool traced = file.size() >= (size_t{1} << 16);
+  if (traced) trace::mark("parse: lines");
   mark_written(pf);
   // Blocks (the lines) and the code index (the commands) touch different fields: a large file does both at once.
   run_tasks(2, parts > 1 ? 2u : 1u, [&](size_t k) {
-    const trace::Scope time(k == 0 ? "blocks" : "code index");
+    const trace::Scope time(!traced ? nullptr : k == 0 ? "blocks" : "code index");
     k == 0 ? compute_blocks(pf) : index_codes(pf);
   });
   if (opts.no_prefilters) {  // every prefilter lets everything through (the contract on ParsedFile::Prefilters)
