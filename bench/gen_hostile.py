@@ -13,6 +13,8 @@ the same size.
   devices      20,000 tools that all fail (no extruder), 20,000 M143s of one heater, 10,000 fans re-created,
                20,000 heaters named before their M950, 500 probes re-created 40 times: each finding or check once
                walked every later (or earlier) node
+  override     a config-override.g of 60,000 lines loaded by an M501 that 40,000 lines follow: each later line
+               walked the whole run (to find its end, and the last line that set the same thing)
 
 Usage: gen_hostile.py OUT_DIR   (writes OUT_DIR/<shape>/sys/...)
 """
@@ -57,6 +59,12 @@ def main():
         "heaters.g": "".join(f"M140 H{i}\n" for i in range(2, n)) +
                      "".join(f'M950 H{i} C"out{i}" T1\n' for i in range(2, n)),
         "probes.g": "".join(f'M558 K{i % 500} P5 C"io{i % 500}.in" H5\nG31 K{i % 500} Z{i % 7}\n' for i in range(n)),
+    })
+    card(out, "override", {
+        "config.g": head.replace("M584 X0 Y1 Z2", "M584 X0 Y1 Z2 E3:4") + "M501\n" +
+                    "".join(f"M92 X{80 + i % 3} Y80\nM563 P{i % 50} D0\n" for i in range(n)),
+        "config-override.g": "".join(f"M307 H{i % 8} R2 K0.3 D5 E1.35 V24\nG10 P{i % 50} X1 Y1 Z0\nM208 X{i} Y200\n"
+                                     for i in range(n)),
     })
 
 

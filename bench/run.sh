@@ -127,7 +127,7 @@ echo "== P7: hostile shapes"
 rm -rf "$out/hostile"
 python3 "$here/gen_hostile.py" "$out/hostile"
 hostile=()
-for shape in diamond tools suppression g10s ranges parens devices; do
+for shape in diamond tools suppression g10s ranges parens devices override; do
   hostile+=(-n "rrflint $shape" "${check[*]} $out/hostile/$shape >/dev/null 2>&1")
 done
 hyperfine --warmup 1 --runs "$big_runs" -i --export-json "$out/p7.json" "${hostile[@]}"

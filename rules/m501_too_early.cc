@@ -99,14 +99,14 @@ enum class Match : uint8_t { No, Yes, Unknown };
 template <class Pred>
 NodeId later(const NodeContext& cx, const Run& run, char letter, int number, Pred pred) {
   Match m = Match::No;
-  const NodeId id = cx.graph.nodes.find_if(run.leave + 1, cx.segment().end, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (!k.is(letter, number)) return false;
-    m = pred(k);
-    if (m != Match::No && n.maybe) m = Match::Unknown;
-    return m != Match::No;
-  });
+  // Only the commands of that code (the code index): each line of a long config-override.g walked every node after
+  // the M501.
+  const NodeId id = tools::each_code_node(cx, run.leave + 1, cx.segment().end, letter, number,
+                                          [&](NodeId, const tools::NodeCommand& k) {
+                                            m = pred(k);
+                                            if (m != Match::No && k.node.maybe) m = Match::Unknown;
+                                            return m != Match::No;
+                                          });
   return m == Match::Yes ? id : kNoNode;
 }
 

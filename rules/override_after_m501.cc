@@ -187,11 +187,8 @@ void check_m563(const NodeContext& cx, Sink& out, const Run& run) {
 /// and that command was judged)? `same` is asked of every command of code `letter` `number`.
 template <class Same>
 bool set_between(const NodeContext& cx, const Run& run, char letter, int number, Same same) {
-  return cx.graph.nodes.find_if(run.leave + 1, cx.id, [&](NodeId, const Node& n) {
-    if (n.kind != NodeKind::Command) return false;
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    return k.is(letter, number) && same(k);
-  }) != kNoNode;
+  return tools::each_code_node(cx, run.leave + 1, cx.id, letter, number,
+                               [&](NodeId, const tools::NodeCommand& k) { return same(k); }) != kNoNode;
 }
 
 /// Did the device (created at `created`, kNoNode: it always existed) exist when the line `loaded` ran?

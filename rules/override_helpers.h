@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "lint/engine/rule.h"
@@ -26,11 +27,20 @@ inline std::optional<Run> run_of(const Graph& g, NodeId m501) {
   const Node e = g.nodes[m501 + 1];
   if (e.kind != NodeKind::Enter || e.call != CallKind::M501 || e.call_site != m501) return std::nullopt;
   const NodeId enter = m501 + 1;
-  const NodeId leave = g.nodes.find_if(enter + 1, static_cast<NodeId>(g.nodes.size()), [&](NodeId, const Node& n) {
-    return n.kind == NodeKind::Leave && n.enter == enter;
+  // The Leave node of each Enter, found once per graph: each command after the M501 asked, and walked the run.
+  struct Leaves {
+    std::unordered_map<NodeId, NodeId> of_enter;
+  };
+  const Leaves& leaves = g.derived<Leaves>("override_file.leaves", [&] {
+    Leaves out;
+    g.nodes.each_whole([&](NodeId id, const Node& n) {
+      if (n.kind == NodeKind::Leave) out.of_enter.emplace(n.enter, id);
+    });
+    return out;
   });
-  if (leave == kNoNode) return std::nullopt;
-  return Run{m501, enter, leave};
+  const auto leave = leaves.of_enter.find(enter);
+  if (leave == leaves.of_enter.end()) return std::nullopt;
+  return Run{m501, enter, leave->second};
 }
 
 /// The run of config-override.g loaded before this node, in the boot sequence; nullopt if none.
@@ -42,14 +52,8 @@ inline std::optional<Run> loaded_run(const NodeContext& cx) {
 /// The last command of the run with code `letter` `number` that certainly runs and for which pred holds.
 template <class Pred>
 NodeId last_in_run(const NodeContext& cx, const Run& r, char letter, int number, Pred pred) {
-  NodeId found = kNoNode;
-  cx.graph.nodes.find_if(r.enter + 1, r.leave, [&](NodeId id, const Node& n) {
-    if (n.kind != NodeKind::Command || n.maybe) return false;
-    const tools::NodeCommand k = tools::command_at(cx.machine, n);
-    if (k.is(letter, number) && pred(k)) found = id;
-    return false;
-  });
-  return found;
+  return tools::each_code_node_backward(cx, r.enter + 1, r.leave, letter, {number},
+                                        [&](NodeId, const tools::NodeCommand& k) { return !k.node.maybe && pred(k); });
 }
 
 /// How two values of one letter compare: both known and equal, both known and different, or not comparable.
