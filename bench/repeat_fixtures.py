@@ -11,7 +11,11 @@ exits with neither 0 nor 1; any of these makes the exit status 1. Fixtures that 
 a config.g that rrflint refuses (exit 2, nothing linted): they are listed apart. bench/RESULTS.md ("Fixtures repeated")
 records what this found and fixed.
 
-Usage: repeat_fixtures.py RRFLINT [SIZE_BYTES=1000000] [LIMIT_MS_PER_MB=1000] [MAX_RATIO=3] [TOP=15]
+With --vary, each copy renumbers the tools, heaters, fans, probes and sensors it names (P, H, F, K, T, S
+followed by a number get k added in the k-th copy): a config of thousands of distinct devices, where a rule that
+scans every M563 of the card for each finding is quadratic even though each copy alone is not.
+
+Usage: repeat_fixtures.py [--vary] RRFLINT [SIZE_BYTES=1000000] [LIMIT_MS_PER_MB=1000] [MAX_RATIO=3] [TOP=15]
 """
 import math
 import os
@@ -24,10 +28,24 @@ here = os.path.dirname(os.path.abspath(__file__))
 fixtures = os.path.join(os.path.dirname(here), "fixtures")
 
 
-def lint(rrflint, data, size, tmp):
+NUMBERED = re.compile(rb"(?<![A-Za-z'\"{.])([PHFKTS])(\d+)\b")
+
+
+def repeated(data, size, vary):
+    """`data` repeated to `size` bytes; with `vary`, the k-th copy's device numbers raised by k."""
+    if not vary:
+        return data * max(1, -(-size // len(data)))
+    out, k = bytearray(), 0
+    while len(out) < size:
+        out += NUMBERED.sub(lambda m: m.group(1) + str(int(m.group(2)) + k).encode(), data)
+        k += 1
+    return bytes(out)
+
+
+def lint(rrflint, data, size, tmp, vary):
     """(whole run in ms or nan, slowest rule (ms, name), exit status) for `data` repeated to `size` bytes."""
     with open(os.path.join(tmp, "sys", "config.g"), "wb") as f:
-        f.write(data * max(1, -(-size // len(data))))
+        f.write(repeated(data, size, vary))
     run = subprocess.run([rrflint, "check", "-j", "1", "--select", "all", "--format", "json", tmp],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, errors="replace",
                          env=dict(os.environ, RRFLINT_TRACE="1"))
@@ -37,11 +55,13 @@ def lint(rrflint, data, size, tmp):
 
 
 def main():
-    rrflint = sys.argv[1]
-    size = int(sys.argv[2]) if len(sys.argv) > 2 else 1_000_000
-    limit = float(sys.argv[3]) if len(sys.argv) > 3 else 1000.0
-    max_ratio = float(sys.argv[4]) if len(sys.argv) > 4 else 3.0
-    top = int(sys.argv[5]) if len(sys.argv) > 5 else 15
+    vary = "--vary" in sys.argv
+    args = [a for a in sys.argv[1:] if a != "--vary"]
+    rrflint = args[0]
+    size = int(args[1]) if len(args) > 1 else 1_000_000
+    limit = float(args[2]) if len(args) > 2 else 1000.0
+    max_ratio = float(args[3]) if len(args) > 3 else 3.0
+    top = int(args[4]) if len(args) > 4 else 15
     files = sorted(os.path.join(d, f) for d, _, fs in os.walk(fixtures) for f in fs
                    if f.endswith(".g") and not f.endswith(".fixed.g"))
     rows, refused = [], []
@@ -51,8 +71,8 @@ def main():
             data = open(path, "rb").read()
             if not data.endswith(b"\n"):
                 data += b"\n"
-            half, _, rc_half = lint(rrflint, data, size // 2, tmp)
-            full, rule, rc = lint(rrflint, data, size, tmp)
+            half, _, rc_half = lint(rrflint, data, size // 2, tmp, vary)
+            full, rule, rc = lint(rrflint, data, size, tmp, vary)
             if rc == 2 and rc_half == 2:
                 refused.append(os.path.relpath(path, fixtures))
                 continue
@@ -65,7 +85,8 @@ def main():
                 marks.append("GROWS")
             rows.append((full, half, os.path.relpath(path, fixtures), rule, marks))
     rows.sort(key=lambda r: (not r[4], -r[0]))
-    print(f"{len(rows)} fixtures repeated to {size // 2:,} and {size:,} bytes (limits: {limit:.0f} ms per MB, "
+    print(f"{len(rows)} fixtures repeated{' with their device numbers varied' if vary else ''} to {size // 2:,} "
+          f"and {size:,} bytes (limits: {limit:.0f} ms per MB, "
           f"x{max_ratio:g} for twice the input); the {min(top, len(rows))} slowest, marked ones first:")
     print(f"| fixture | {size // 2:,} bytes | {size:,} bytes | slowest rule | |")
     print("|---|---|---|---|---|")

@@ -131,10 +131,13 @@ for shape in diamond tools suppression g10s ranges parens devices override; do
   hostile+=(-n "rrflint $shape" "${check[*]} $out/hostile/$shape >/dev/null 2>&1")
 done
 hyperfine --warmup 1 --runs "$big_runs" -i --export-json "$out/p7.json" "${hostile[@]}"
-# And every fixture repeated to 0.5 and 1 MB: a look-ahead that walks the nodes per command shows as a time that
-# grows faster than the input (bench/repeat_fixtures.py marks it GROWS, and SLOW past 1 s per MB).
+# And every fixture repeated to 0.5 and 1 MB, then again with its device numbers varied per copy: a look-ahead
+# that walks the nodes per command shows as a time that grows faster than the input (bench/repeat_fixtures.py marks
+# it GROWS, and SLOW past 1 s per MB).
 python3 "$here/repeat_fixtures.py" "$rrflint" 1000000 >"$out/p7-fixtures.md" ||
   echo "P7: some repeated fixtures are marked: see $out/p7-fixtures.md"
+python3 "$here/repeat_fixtures.py" --vary "$rrflint" 1000000 >>"$out/p7-fixtures.md" ||
+  echo "P7: some repeated fixtures (device numbers varied) are marked: see $out/p7-fixtures.md"
 
 echo "== P5 and the core benchmarks (Google Benchmark)"
 "$build/rrflint_bench" --benchmark_repetitions=$((runs > 2 ? 10 : 2)) --benchmark_report_aggregates_only=true \

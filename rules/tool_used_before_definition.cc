@@ -1,6 +1,8 @@
 // RRF325 tool-used-before-definition: M568/M567/M207 P<n> or T<n> before M563 creates tool n.
 #include <fmt/format.h>
 
+#include <unordered_set>
+
 #include "lint/engine/rule.h"
 #include "rules/tool_helpers.h"
 
@@ -53,18 +55,28 @@ T0 P0
 )md",
 };
 
-/// Does any file of the machine have an M563 that could create tool n (its P is n or an expression)?
-bool created_anywhere(const Machine& m, int n) {
-  for (uint32_t i = 0; i < m.unit_count(); ++i) {
-    const ParsedFile& pf = m.unit(i).parsed;
-    for (const uint32_t ci : pf.with_code('M', 563)) {
-      const Command& c = pf.commands[ci];
-      if (!c.is('M', 563)) continue;
-      auto P = get_int(pf, c, 'P');
-      if (!P.known() || P.value == n) return true;
+/// Does any file of the machine have an M563 that could create tool n (its P is n, an expression, or absent)? The
+/// numbers are gathered once per graph: each finding scanned every M563 of the card.
+bool created_anywhere(const NodeContext& cx, int n) {
+  struct Created {
+    std::unordered_set<int64_t> numbers;
+    bool any = false;  // an M563 whose P is not a number: it may create any tool
+  };
+  const Created& created = cx.graph.derived<Created>("tool_used_before_definition.created", [&] {
+    Created out;
+    for (uint32_t i = 0; i < cx.machine.unit_count(); ++i) {
+      const ParsedFile& pf = cx.machine.unit(i).parsed;
+      for (const uint32_t ci : pf.with_code('M', 563)) {
+        const Command& c = pf.commands[ci];
+        if (!c.is('M', 563)) continue;
+        auto P = get_int(pf, c, 'P');
+        if (P.known()) out.numbers.insert(P.value);
+        else out.any = true;
+      }
     }
-  }
-  return false;
+    return out;
+  });
+  return created.any || created.numbers.count(n) > 0;
 }
 
 std::string consequence(const Command& c, Version fw, int n) {
@@ -94,9 +106,9 @@ void check(const NodeContext& cx, Sink& out) {
   }
   if (!s.tool_certainly_absent(n) || s.failed_tools.count(n)) return;
   const NodeId later = cx.in_boot() ? tools::later_m563(cx, n) : kNoNode;
-  if (!cx.in_boot() && created_anywhere(cx.machine, n)) return;
+  if (!cx.in_boot() && created_anywhere(cx, n)) return;
   // `T99` for a tool that nothing creates, beyond the 0–49 range, is the old way to deselect every tool.
-  if (c.letter == 'T' && n >= 50 && later == kNoNode && !created_anywhere(cx.machine, n)) return;
+  if (c.letter == 'T' && n >= 50 && later == kNoNode && !created_anywhere(cx, n)) return;
   const std::string when = later != kNoNode ? fmt::format(" before 'M563 P{}' creates it", n)
                            : cx.in_boot()   ? ", which the boot sequence never creates"
                                             : ", which no M563 on the SD card creates";
