@@ -1,6 +1,7 @@
 // RRF305 g10-nonzero-z: tools on one carriage that end the boot sequence with different Z offsets.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -100,6 +101,56 @@ bool tool_changer_evidence(const EndContext& cx) {
 
 std::string format_z(double z) { return fmt::format("{:g}", z); }
 
+/// Of the tools of one carriage, those whose Z differs from that of a tool with another heater set: a tool with
+/// heater set h is one when the lowest or the highest Z among the tools of the other sets is 1e-9 or more away from
+/// its own. From the extremes of each set, not from every pair of tools (quadratic on a config of thousands of tools
+/// with the same heaters).
+std::vector<const Tool*> involved_tools(const std::vector<const Tool*>& tools, int z) {
+  auto zof = [z](const Tool* t) { return t->offsets[static_cast<size_t>(z)].value; };
+  std::map<std::vector<int64_t>, std::pair<double, double>> extremes;  // sorted heater set -> lowest, highest Z
+  std::vector<const std::vector<int64_t>*> set_of;                     // each tool's heater set
+  for (const Tool* t : tools) {
+    std::vector<int64_t> h = t->heaters;
+    std::sort(h.begin(), h.end());
+    auto [it, fresh] = extremes.try_emplace(std::move(h), zof(t), zof(t));
+    it->second = {std::min(it->second.first, zof(t)), std::max(it->second.second, zof(t))};
+    set_of.push_back(&it->first);
+  }
+  // The lowest and highest Z of all the sets, with the set that holds each, and the lowest and highest of the
+  // other sets: what "the other sets" have, for a tool of that set and for any other.
+  const std::vector<int64_t>*low_set = nullptr, *high_set = nullptr;
+  double low = 0, high = 0;
+  double low2 = std::numeric_limits<double>::infinity(), high2 = -std::numeric_limits<double>::infinity();
+  for (const auto& [h, e] : extremes) {
+    if (!low_set) {
+      low = e.first, high = e.second;
+      low_set = high_set = &h;
+      continue;
+    }
+    if (e.first < low) low2 = low, low = e.first, low_set = &h;
+    else low2 = std::min(low2, e.first);
+    if (e.second > high) high2 = high, high = e.second, high_set = &h;
+    else high2 = std::max(high2, e.second);
+  }
+  std::vector<const Tool*> involved;
+  const bool finite = std::all_of(tools.begin(), tools.end(), [&](const Tool* t) { return std::isfinite(zof(t)); });
+  for (size_t i = 0; i < tools.size() && extremes.size() >= 2; ++i) {
+    const Tool* a = tools[i];
+    if (finite) {
+      const double lo = set_of[i] == low_set ? low2 : low, hi = set_of[i] == high_set ? high2 : high;
+      if (hi - zof(a) >= 1e-9 || zof(a) - lo >= 1e-9) involved.push_back(a);
+      continue;
+    }
+    // An infinite Z (`Z1e999`): every pair, as the extremes cannot say what |a - b| makes of it.
+    for (size_t j = 0; j < tools.size(); ++j)
+      if (set_of[j] != set_of[i] && !(std::abs(zof(a) - zof(tools[j])) < 1e-9)) {
+        involved.push_back(a);
+        break;
+      }
+  }
+  return involved;
+}
+
 void check(const EndContext& cx, Sink& out) {
   const MachineState& s = cx.end_of_boot;
   if (!s.tools_known || s.unknown_baseline || s.mode != MachineMode::FFF || s.tools.size() < 2) return;
@@ -118,21 +169,7 @@ void check(const EndContext& cx, Sink& out) {
   bool checked_evidence = false;
   for (auto& [key, tools] : groups) {
     if (tools.size() < 2) continue;
-    // Tools that differ in Z from a tool with another heater set.
-    std::vector<const Tool*> involved;
-    for (const Tool* a : tools) {
-      for (const Tool* b : tools) {
-        if (a == b) continue;
-        std::vector<int64_t> ha = a->heaters, hb = b->heaters;
-        std::sort(ha.begin(), ha.end());
-        std::sort(hb.begin(), hb.end());
-        if (ha == hb) continue;
-        if (std::abs(a->offsets[static_cast<size_t>(z)].value - b->offsets[static_cast<size_t>(z)].value) < 1e-9)
-          continue;
-        involved.push_back(a);
-        break;
-      }
-    }
+    const std::vector<const Tool*> involved = involved_tools(tools, z);
     if (involved.size() < 2) continue;
     if (!checked_evidence) {
       if (tool_changer_evidence(cx)) return;
