@@ -50,7 +50,7 @@ def lint(rrflint, data, size, tmp, vary):
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, errors="replace",
                          env=dict(os.environ, RRFLINT_TRACE="1"))
     total = re.findall(r"trace\s+([\d.]+) ms\s+\[\d+\] freed", run.stderr)
-    rules = [(float(ms), name) for ms, name in re.findall(r"took\s+([\d.]+) ms\s+(?:node )?rule (\S+)", run.stderr)]
+    rules = [(float(ms), name) for ms, name in re.findall(r"took\s+([\d.]+) ms\s+(?:node |end )?rule (\S+)", run.stderr)]
     return (float(total[-1]) if total else math.nan), max(rules, default=(0.0, "-")), run.returncode
 
 

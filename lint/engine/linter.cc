@@ -268,7 +268,10 @@ void run_end_rules(const MachineResult& res, const LintOptions& options, const s
                    Sink& sink) {
   EndContext ec{*res.machine, res.graph, res.target, options, res.end_of_boot};
   for (const Rule* r : rules)
-    if (r->check_end) r->check_end(ec, sink);
+    if (r->check_end) {
+      const trace::Scope time("end rule", r->meta.name);
+      r->check_end(ec, sink);
+    }
 }
 
 // 6. Severity overrides, de-duplication (a macro run twice reports once), order: the sink's findings, appended to
