@@ -141,11 +141,10 @@ void check(const NodeContext& cx, Sink& out) {
   std::sort(first.begin(), first.end());
   std::vector<std::pair<int, NodeId>> lost_at;  // code, node (kNoNode: set again later)
   for (const auto& [id, code] : first) {
-    bool maybe = false;  // an expression names a device before the next command that configures this one
     const tools::DeviceIndex& index = configuring(cx, letter, code);
-    const bool again = tools::first_later(cx, index.known, int64_t{n}) != kNoNode;
-    index.first_later(cx, n, &maybe);
-    unknown = unknown || maybe;
+    const NodeId next = tools::first_later(cx, index.known, int64_t{n});
+    const bool again = next != kNoNode;
+    unknown = unknown || tools::first_later(cx, index.unknown) < next;  // an expression names a device before it
     lost_at.emplace_back(code, again ? kNoNode : id);
     reconfigured = reconfigured || again;
   }

@@ -107,17 +107,6 @@ inline std::vector<std::pair<NodeId, NodeId>> since(const NodeContext& cx, NodeI
   return out;
 }
 
-/// Calls f(id, command) for each command of code `letter` `number` (no fraction; `number` 0…1023) that ran after
-/// node `from` and before this one (since(), tools::each_code_node).
-template <class F>
-void each_since_code(const NodeContext& cx, NodeId from, char letter, int number, F f) {
-  for (const auto& [b, e] : since(cx, from))
-    tools::each_code_node(cx, b, e, letter, number, [&](NodeId id, const tools::NodeCommand& k) {
-      f(id, k);
-      return false;
-    });
-}
-
 /// The M308 commands that create sensors, by sensor number, and those whose sensor number is an expression: as
 /// graph nodes in node order, and whether any command on the card (in or out of the graph). Built once per graph
 /// (Graph::derived): a card of thousands of heaters asked every M308 for each M950.
