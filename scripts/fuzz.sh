@@ -12,7 +12,10 @@
 #
 # Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RESULTS (the file the rows go to; set it empty to record
 # nothing, as the CI smoke does), FUZZ_SEEDS (keep that many seeds per target, spread over them: a short run would
-# spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048).
+# spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048),
+# FUZZ_NO_BUILD=1 (run the targets already built, as scripts/fuzz-rounds.sh does after its first round, so that
+# edits made meanwhile are not built half-done) with FUZZ_COMMIT (the commit they were built from, for the rows),
+# FUZZ_BUILD_ONLY=1 (build the targets and stop).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -37,9 +40,16 @@ command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=cca
 generator=()
 command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
 [[ -f "$build/CMakeCache.txt" ]] && generator=()
-cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
-cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+if [[ "${FUZZ_NO_BUILD:-}" == 1 ]]; then
+  for t in "${targets[@]}"; do
+    [[ -x "$build/fuzz_$t" ]] || { echo "fuzz: FUZZ_NO_BUILD=1 but $build/fuzz_$t is not built" >&2; exit 2; }
+  done
+else
+  cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
+  cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+fi
+[[ "${FUZZ_BUILD_ONLY:-}" == 1 ]] && exit 0
 
 work="$build/fuzz-work"
 rm -rf "$work/seeds"
@@ -51,8 +61,12 @@ if [[ -n "$results" && ! -f "$results" ]]; then
   echo "fuzz: $results is missing (it starts with the table header)" >&2
   exit 2
 fi
-commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
-git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
+if [[ -n "${FUZZ_COMMIT:-}" ]]; then
+  commit=$FUZZ_COMMIT
+else
+  commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
+  git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
+fi
 failed=0
 for t in "${targets[@]}"; do
   mkdir -p "$work/corpus/$t"
