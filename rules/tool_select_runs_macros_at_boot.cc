@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <unordered_map>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "lint/engine/rule.h"
+#include "rules/node_index.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -122,30 +124,28 @@ std::string file_name(std::string_view sd_path) {
   return std::string(slash == std::string_view::npos ? sd_path : sd_path.substr(slash + 1));
 }
 
-/// The G10s and M568s with S (which may set an active temperature) by the tool their P names, in node order;
-/// built once per graph. Each T used to walk every node before it.
-struct TemperatureSetters {
-  std::unordered_map<int64_t, std::vector<NodeId>> by_tool;
-};
+/// The G10s (letter 'G') or M568s (letter 'M') with S, which may set an active temperature, by the tool their P
+/// names; built once per graph. Each T used to walk every node before it. A P given by an expression is left out.
+const tools::DeviceIndex& temperature_setters(const NodeContext& cx, char letter) {
+  struct Named {
+    int64_t number;
+    bool known;
+  };
+  return tools::device_index(cx.machine, cx.graph, std::string("tool_select.temperature_setters.") + letter, letter,
+                             letter == 'G' ? 10 : 568,
+                             [](const ParsedFile& pf, const Command& c) -> std::optional<Named> {
+                               auto P = get_int(pf, c, 'P');
+                               if (!P.known() || !pf.find(c, 'S')) return std::nullopt;
+                               return Named{P.value, true};
+                             });
+}
 
 /// The last G10/M568 before this node that set an active temperature for tool n.
 NodeId temperature_origin(const NodeContext& cx, int n) {
-  const TemperatureSetters& t = cx.graph.derived<TemperatureSetters>("tool_select.temperature_setters", [&] {
-    std::vector<std::pair<NodeId, int64_t>> found;
-    for (const int code : {10, 568}) {
-      const char letter = code == 10 ? 'G' : 'M';
-      tools::each_code_command(cx.machine, cx.graph, letter, code,
-                               [&](NodeId id, const Node&, const ParsedFile& pf, const Command& c) {
-                                 auto P = get_int(pf, c, 'P');
-                                 if (P.known() && pf.find(c, 'S')) found.push_back({id, P.value});
-                               });
-    }
-    std::sort(found.begin(), found.end());
-    TemperatureSetters out;
-    for (const auto& [id, tool] : found) out.by_tool[tool].push_back(id);
-    return out;
-  });
-  return tools::last_before(tools::ids_of(t.by_tool, int64_t{n}), cx.segment().begin, cx.id);
+  const NodeId g10 = temperature_setters(cx, 'G').last_in(cx.segment().begin, cx.id, n);
+  const NodeId m568 = temperature_setters(cx, 'M').last_in(cx.segment().begin, cx.id, n);
+  if (g10 == kNoNode) return m568;
+  return m568 == kNoNode ? g10 : std::max(g10, m568);
 }
 
 void check(const NodeContext& cx, Sink& out) {
