@@ -59,6 +59,11 @@ void JsonWriter::value(uint64_t n) {
   fmt::format_to(std::back_inserter(out_), "{}", n);
 }
 
+void JsonWriter::value(bool b) {
+  before_value();
+  out_ += b ? "true" : "false";
+}
+
 void JsonWriter::null() {
   before_value();
   out_ += "null";

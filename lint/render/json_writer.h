@@ -31,6 +31,7 @@ class JsonWriter {
   void value(uint64_t n);
   void value(int n) { value(int64_t{n}); }
   void value(uint32_t n) { value(uint64_t{n}); }
+  void value(bool b);
   void null();
   /// Goes on inside `depth` containers that another writer opened, the innermost an array: `first`, whether the
   /// next element is its first. (A piece of a long array written apart from the rest: write_diagnostics_json.)
