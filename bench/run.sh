@@ -117,6 +117,19 @@ if [[ -f "$gen_big" ]]; then
     rm -f "$out/p6-${mb}M.json"
   done
   cat "$out/p6.tsv"
+  # Every output format at 30 MB, one run each: a renderer that builds a document tree grows with the findings
+  # (SARIF did: 1 GB and 5.6 s at 100 MB until it was streamed). Marked when it needs over 3x the input in memory.
+  echo "== P6: every format at 30 MB (wall s, peak RSS)"
+  size=$(stat -c %s "$out/big-30M.g")
+  : >"$out/p6-formats.tsv"
+  for f in json json-lines sarif text concise github; do
+    /usr/bin/time -f '%e %M' -o "$out/p6-format.time" "$rrflint" check --format "$f" --exit-zero --color never \
+      -o /dev/null "$out/big-30M.g" 2>/dev/null
+    read -r secs kb <"$out/p6-format.time"
+    mark=$(awk -v kb="$kb" -v size="$size" 'BEGIN { print (kb * 1024 > 3 * size) ? "OVER 3x" : "ok" }')
+    printf '%s\t%s\t%s\t%s\n' "$f" "$secs" "$kb" "$mark" | tee -a "$out/p6-formats.tsv"
+  done
+  rm -f "$out/p6-format.time"
 else
   echo "== P6 skipped: $gen_big not found"
 fi
