@@ -149,7 +149,7 @@ bool judged_elsewhere(const NodeContext& cx, NodeId id) {
 NodeId earlier_m143(const NodeContext& cx, const Monitor& m, int own_sensor, NodeId created, Monitor& old) {
   // Only what ran since the heater was created counts, and of that the last command that set this monitor or may
   // have changed the heater's monitors decides: the walk goes back from here over those codes and stops at it.
-  const NodeId from = created == kNoNode ? cx.segment().begin : std::max(cx.segment().begin, created);
+  const NodeId from = tools::later_of(cx.segment().begin, created);
   NodeId found = kNoNode;
   tools::each_code_node_backward(cx, from, cx.id, 'M', {950, 563, 140, 141, 143},
                                  [&](NodeId id, const tools::NodeCommand& k) {

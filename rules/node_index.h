@@ -47,6 +47,12 @@ inline NodeId last_before(const std::vector<NodeId>& ids, NodeId begin, NodeId b
   return it != ids.begin() && *std::prev(it) >= begin ? *std::prev(it) : kNoNode;
 }
 
+/// The later of two nodes, either of which may be kNoNode (none): kNoNode only when both are.
+inline NodeId later_of(NodeId a, NodeId b) {
+  if (a == kNoNode) return b;
+  return b == kNoNode ? a : std::max(a, b);
+}
+
 /// The first of `ids` (sorted) after the node at `cx`, in its segment; kNoNode if none.
 inline NodeId first_later(const NodeContext& cx, const std::vector<NodeId>& ids) {
   return first_after(ids, cx.id, cx.segment().end);
@@ -114,9 +120,7 @@ struct DeviceIndex {
   }
   /// The last of them in [begin, end) that names device n, or may; kNoNode if none.
   NodeId last_in(NodeId begin, NodeId end, int64_t n) const {
-    const NodeId named = last_before(ids_of(known, n), begin, end), unsure = last_before(unknown, begin, end);
-    if (named == kNoNode) return unsure;
-    return unsure == kNoNode ? named : std::max(named, unsure);
+    return later_of(last_before(ids_of(known, n), begin, end), last_before(unknown, begin, end));
   }
 };
 

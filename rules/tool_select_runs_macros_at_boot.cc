@@ -142,10 +142,8 @@ const tools::DeviceIndex& temperature_setters(const NodeContext& cx, char letter
 
 /// The last G10/M568 before this node that set an active temperature for tool n.
 NodeId temperature_origin(const NodeContext& cx, int n) {
-  const NodeId g10 = temperature_setters(cx, 'G').last_in(cx.segment().begin, cx.id, n);
-  const NodeId m568 = temperature_setters(cx, 'M').last_in(cx.segment().begin, cx.id, n);
-  if (g10 == kNoNode) return m568;
-  return m568 == kNoNode ? g10 : std::max(g10, m568);
+  return tools::later_of(temperature_setters(cx, 'G').last_in(cx.segment().begin, cx.id, n),
+                         temperature_setters(cx, 'M').last_in(cx.segment().begin, cx.id, n));
 }
 
 void check(const NodeContext& cx, Sink& out) {
