@@ -30,17 +30,14 @@ export FUZZ_BUILD_DIR=$build FUZZ_TIMEOUT=${FUZZ_TIMEOUT:-120}
 candidates=("$@")
 [[ ${#candidates[@]} -eq 0 ]] && candidates=(parse lint card fix render lsp session)
 
-# The executions recorded for target $1 (the rows of fuzz.sh, as its totals line counts them).
+# The executions recorded for target $1.
 total() {
-  awk -F'|' -v t="$1" '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { gsub(/ /, "", $3); if ($3 == t) n += $4 } END { print n + 0 }' \
-    "$results"
+  FUZZ_RESULTS=$results scripts/fuzz.sh --totals | awk -v t="$1" '$1 == t { n = $2 } END { print n + 0 }'
 }
 
-# Build once, then run what was built.
-commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
-git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
+# Build once, then run what was built (each row names the commit its target was built from).
 FUZZ_BUILD_ONLY=1 scripts/fuzz.sh 1 "${candidates[@]}" || { echo "fuzz-rounds: the targets did not build" >&2; exit 2; }
-export FUZZ_NO_BUILD=1 FUZZ_COMMIT=$commit
+export FUZZ_NO_BUILD=1
 
 end=$(($(date +%s) + $(awk -v h="$hours" 'BEGIN { printf "%d", h * 3600 }')))
 while (($(date +%s) < end)); do

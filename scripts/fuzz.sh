@@ -3,6 +3,7 @@
 # build folder and runs each for a given time, appending one row per run to tests/fuzz/RESULTS.md.
 #
 #   scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET…]     default: 60 seconds, every target
+#   scripts/fuzz.sh --totals                           the executions recorded per target: "TARGET COUNT" lines
 #
 # TARGET: parse, lint, card, fix, render, lsp, session. Each run has a timeout per input (hang detection), a memory limit
 # and leak detection on. Seeds come from tests/fuzz/make_seeds.py (fixtures/, and ../shared/corpus read-only when
@@ -13,12 +14,23 @@
 # Environment: FUZZ_BUILD_DIR (default build-fuzz), FUZZ_RESULTS (the file the rows go to; set it empty to record
 # nothing, as the CI smoke does), FUZZ_SEEDS (keep that many seeds per target, spread over them: a short run would
 # spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048),
-# FUZZ_NO_BUILD=1 (run the targets already built, as scripts/fuzz-rounds.sh does after its first round, so that
-# edits made meanwhile are not built half-done) with FUZZ_COMMIT (the commit they were built from, for the rows),
-# FUZZ_BUILD_ONLY=1 (build the targets and stop).
+# FUZZ_NO_BUILD=1 (run the targets already built, as scripts/fuzz-rounds.sh does after building them once, so that
+# edits made meanwhile are not built half-done; the rows name the commit each was built from, kept beside it as
+# fuzz_TARGET.commit), FUZZ_BUILD_ONLY=1 (build the targets and stop).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
+results=${FUZZ_RESULTS-tests/fuzz/RESULTS.md}
+# The executions per target over every recorded row, as "TARGET COUNT" lines sorted by target.
+totals() {
+  awk -F'|' '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { gsub(/ /, "", $3); n[$3] += $4 } END { for (t in n) printf "%s %d\n", t, n[t] }' \
+    "$results" | sort
+}
+if [[ "${1:-}" == --totals ]]; then
+  [[ -n "$results" && -f "$results" ]] || { echo "fuzz: --totals needs FUZZ_RESULTS, an existing file" >&2; exit 2; }
+  totals
+  exit 0
+fi
 seconds=${1:-60}
 shift || true
 all=(parse lint card fix render lsp session)
@@ -30,7 +42,6 @@ done
 [[ "$seconds" =~ ^[0-9]+$ && "$seconds" -gt 0 ]] || { echo "fuzz: SECONDS_PER_TARGET must be a positive number" >&2; exit 2; }
 
 build=${FUZZ_BUILD_DIR:-build-fuzz}
-results=${FUZZ_RESULTS-tests/fuzz/RESULTS.md}
 timeout=${FUZZ_TIMEOUT:-10}
 rss=${FUZZ_RSS_MB:-2048}
 cxx=$(command -v clang++-14 || command -v clang++ || true)
@@ -40,6 +51,9 @@ command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=cca
 generator=()
 command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
 [[ -f "$build/CMakeCache.txt" ]] && generator=()
+# The commit the targets are built from (`+`: with uncommitted changes, RESULTS.md aside).
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
+git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
 if [[ "${FUZZ_NO_BUILD:-}" == 1 ]]; then
   for t in "${targets[@]}"; do
     [[ -x "$build/fuzz_$t" ]] || { echo "fuzz: FUZZ_NO_BUILD=1 but $build/fuzz_$t is not built" >&2; exit 2; }
@@ -48,6 +62,7 @@ else
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
   cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
+  for t in "${targets[@]}"; do echo "$commit" >"$build/fuzz_$t.commit"; done
 fi
 [[ "${FUZZ_BUILD_ONLY:-}" == 1 ]] && exit 0
 
@@ -60,12 +75,6 @@ declare -A max_len=([parse]=8192 [lint]=4096 [card]=8192 [fix]=4096 [render]=409
 if [[ -n "$results" && ! -f "$results" ]]; then
   echo "fuzz: $results is missing (it starts with the table header)" >&2
   exit 2
-fi
-if [[ -n "${FUZZ_COMMIT:-}" ]]; then
-  commit=$FUZZ_COMMIT
-else
-  commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
-  git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
 fi
 failed=0
 for t in "${targets[@]}"; do
@@ -101,12 +110,10 @@ for t in "${targets[@]}"; do
   echo "fuzz: $t: ${execs:-?} executions in ${elapsed} s, cov ${cov:-?}, findings: $findings"
   if [[ -n "$results" ]]; then
     printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "${execs:-?}" "$elapsed" \
-      "${cov:-?}" "$findings" "$commit" >>"$results"
+      "${cov:-?}" "$findings" "$(cat "$build/fuzz_$t.commit" 2>/dev/null || echo "$commit")" >>"$results"
   fi
 done
 if [[ -n "$results" ]]; then
-  # Totals over every recorded run.
-  awk -F'|' '$3 ~ /[a-z]/ && $4 ~ /^ *[0-9]+ *$/ { gsub(/ /, "", $3); n[$3] += $4 } END { for (t in n) printf "fuzz: total %s: %d executions\n", t, n[t] }' \
-    "$results" | sort
+  totals | while read -r t n; do echo "fuzz: total $t: $n executions"; done
 fi
 exit $failed
