@@ -7,19 +7,39 @@ namespace {
 
 bool is_code(LineKind k) { return k == LineKind::Commands || k == LineKind::Meta || k == LineKind::Bad; }
 
-// The first command on or after line `line`.
-uint32_t first_command_from(const ParsedFile& pf, uint32_t line) {
-  uint32_t lo = 0, hi = static_cast<uint32_t>(pf.commands.size());
-  while (lo < hi) {
-    const uint32_t mid = lo + (hi - lo) / 2;
-    if (pf.commands.code(mid).line < line) lo = mid + 1;
-    else hi = mid;
+// The first command on or after a line, for lines asked in increasing order (a chain's lines come in order): a
+// gallop from the last answer, so the chains of a file cost about one pass over its commands, not a binary search
+// of all of them for each line.
+class FirstCommand {
+ public:
+  explicit FirstCommand(const ParsedFile& pf) : pf_(pf), n_(static_cast<uint32_t>(pf.commands.size())) {}
+  uint32_t operator()(uint32_t line) {
+    if (line < last_line_) at_ = 0;  // not in order: search from the start
+    last_line_ = line;
+    if (at_ >= n_ || line_of(at_) >= line) return at_;
+    uint32_t below = at_, step = 1;  // line_of(below) < line
+    while (below + step < n_ && line_of(below + step) < line) {
+      below += step;
+      step *= 2;
+    }
+    uint32_t lo = below + 1, hi = std::min(below + step, n_);  // the answer is in [lo, hi]
+    while (lo < hi) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      if (line_of(mid) < line) lo = mid + 1;
+      else hi = mid;
+    }
+    return at_ = lo;
   }
-  return lo;
-}
+
+ private:
+  uint32_t line_of(uint32_t i) const { return pf_.commands.code(i).line; }
+  const ParsedFile& pf_;
+  const uint32_t n_;
+  uint32_t at_ = 0, last_line_ = 0;
+};
 
 // The body of the branch on line `head`: the lines after it indented deeper, up to the next code line that is not.
-Branch body(const ParsedFile& pf, uint32_t head, uint32_t* next) {
+Branch body(const ParsedFile& pf, FirstCommand& first_command_from, uint32_t head, uint32_t* next) {
   const LineTable& lines = pf.lines;
   Branch b;
   b.kind = lines[head].meta;
@@ -36,7 +56,8 @@ Branch body(const ParsedFile& pf, uint32_t head, uint32_t* next) {
       else b.direct.push_back({c, e});
     }
   }
-  b.commands = {first_command_from(pf, head + 1), first_command_from(pf, l)};
+  b.commands.first = first_command_from(head + 1);
+  b.commands.second = first_command_from(l);
   *next = l;
   return b;
 }
@@ -46,20 +67,21 @@ Branch body(const ParsedFile& pf, uint32_t head, uint32_t* next) {
 std::vector<Chain> top_level_chains(const ParsedFile& pf) {
   std::vector<Chain> out;
   const LineTable& lines = pf.lines;
+  FirstCommand first_command_from(pf);
   for (uint32_t l = 0; l < lines.size();) {
     if (lines.kind(l) != LineKind::Meta || lines.in_block(l) || lines[l].meta != MetaKind::If || lines[l].indent != 0) {
       ++l;
       continue;
     }
     Chain chain;
-    chain.first_command = first_command_from(pf, l);
+    chain.first_command = first_command_from(l);
     uint32_t next = l;
-    chain.branches.push_back(body(pf, l, &next));
+    chain.branches.push_back(body(pf, first_command_from, l, &next));
     // elif/else at indent 0 continue the chain.
     while (next < lines.size() && lines.kind(next) == LineKind::Meta && lines[next].indent == 0 &&
            (lines[next].meta == MetaKind::Elif || lines[next].meta == MetaKind::Else)) {
       const uint32_t head = next;
-      chain.branches.push_back(body(pf, head, &next));
+      chain.branches.push_back(body(pf, first_command_from, head, &next));
     }
     out.push_back(std::move(chain));
     l = next;

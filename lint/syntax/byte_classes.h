@@ -1,5 +1,6 @@
-// Private to the parser's .cc files: the byte classes of the hot loops and the SSE2 helpers that test 16 bytes at a
-// time. They are inlined where they are used (the lexer, the line parser and the fast paths), so they live here.
+// Private to the parser's .cc files and the hottest rule pre-filters: the byte classes of the hot loops and the SSE2
+// helpers that test 16 bytes at a time. They are inlined where they are used (the lexer, the line parser and the fast
+// paths), so they live here.
 #pragma once
 
 #include <cstdint>

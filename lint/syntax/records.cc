@@ -48,8 +48,12 @@ std::vector<uint32_t> CommandTable::with_flag(Flag f) const {
 
 const detail::CommandRec& CommandTable::tail_rec(size_t i) const {
   // The last tail that starts at or before i (tails of no commands share their begin with the next one, which
-  // upper_bound then picks). A binary search: a file parsed in many small parts has many tails.
-  const auto t = std::upper_bound(tails_.begin(), tails_.end(), i, [](size_t v, const Tail& x) { return v < x.begin; });
+  // upper_bound then picks): it lies between the tails of i's block and of the next block, which are few (one or
+  // two, but many when a file is parsed in parts of a few bytes, so a binary search).
+  const size_t b = i >> kTailBlock;
+  const auto first = tails_.begin() + tail_of_block_[b];
+  const auto last = b + 1 < tail_of_block_.size() ? tails_.begin() + tail_of_block_[b + 1] + 1 : tails_.end();
+  const auto t = std::upper_bound(first, last, i, [](size_t v, const Tail& x) { return v < x.begin; });
   return (t - 1)->recs[i - (t - 1)->begin];
 }
 
@@ -70,6 +74,10 @@ void CommandTable::append(CommandTable&& part) {
   fraction_keys_.insert(fraction_keys_.end(), part.fraction_keys_.begin(), part.fraction_keys_.end());
   all_bits_ |= part.all_bits_;
   tails_.push_back(Tail{base, std::move(part.recs_)});
+  // The blocks that start in this tail (none when it is empty); those before it are numbered already.
+  const auto tail = static_cast<uint32_t>(tails_.size() - 1);
+  while ((tail_of_block_.size() << kTailBlock) < base + tails_.back().recs.size())
+    tail_of_block_.push_back((tail_of_block_.size() << kTailBlock) < base ? 0 : tail);
   part = CommandTable{};
 }
 

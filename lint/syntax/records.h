@@ -208,6 +208,10 @@ class CommandTable {
   };
   std::vector<Tail> tails_;
   size_t tail_size_ = 0;
+  // For each block of 2^kTailBlock commands (by index), the tail that holds the block's first command (0 for the
+  // blocks that start in recs_): tail_rec searches only the few tails between it and the next block's.
+  static constexpr unsigned kTailBlock = 12;
+  std::vector<uint32_t> tail_of_block_;
   void push_rec(const detail::CommandRec& r);
   // Kept as records are pushed, for index_codes: commands per code key, the keys of fractional commands (with
   // repeats), and the OR of every record's bits.
