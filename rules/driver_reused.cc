@@ -46,10 +46,14 @@ M584 X0 Y1 Z2 U3
 };
 
 struct Use {
-  std::string who;  // "axis U", "extruder 0"
+  char axis = 0;        // the axis letter, or 0 for an extruder
+  size_t extruder = 0;  // the extruder's number
   DriverId driver;
   int axis_index = -1;  // -1 for extruders
   Location where;
+  bool same_user(const Use& o) const { return axis == o.axis && (axis != 0 || extruder == o.extruder); }
+  // "axis U", "extruder 0": written only for a finding (a config maps many drivers, and few are reused)
+  std::string who() const { return axis ? fmt::format("axis {}", axis) : fmt::format("extruder {}", extruder); }
 };
 
 /// Axes and extruders this M584 maps, with the axis index each letter gets.
@@ -65,13 +69,12 @@ std::vector<Use> uses_here(const NodeContext& cx) {
     if (idx < 0) idx = next_new++;
     auto d = get_driver_list(pf, c, L);
     if (!d.known()) continue;  // an expression: its drivers are not checked
-    for (DriverId id : d.value) out.push_back({fmt::format("axis {}", L), id, idx, cx.at(p->span)});
+    for (DriverId id : d.value) out.push_back({L, 0, id, idx, cx.at(p->span)});
   }
   if (ParamRef p = pf.find(c, 'E')) {
     auto d = get_driver_list(pf, c, 'E');
     if (d.known())
-      for (size_t i = 0; i < d.value.size(); ++i)
-        out.push_back({fmt::format("extruder {}", i), d.value[i], -1, cx.at(p->span)});
+      for (size_t i = 0; i < d.value.size(); ++i) out.push_back({0, i, d.value[i], -1, cx.at(p->span)});
   }
   return out;
 }
@@ -85,13 +88,11 @@ std::vector<Use> earlier_uses(const NodeContext& cx) {
   for (size_t i = 0; i < cx.state.axes.size(); ++i) {
     const Axis& a = cx.state.axes[i];
     if (a.maybe || a.drivers_set == kNoNode || pf.find(c, a.letter)) continue;
-    for (DriverId id : a.drivers)
-      out.push_back({fmt::format("axis {}", a.letter), id, static_cast<int>(i), cx.where(a.drivers_set)});
+    for (DriverId id : a.drivers) out.push_back({a.letter, 0, id, static_cast<int>(i), cx.where(a.drivers_set)});
   }
   if (!pf.find(c, 'E') && cx.state.extruders_known && cx.state.extruders_set != kNoNode)
     for (size_t i = 0; i < cx.state.extruder_drivers.size(); ++i)
-      out.push_back(
-          {fmt::format("extruder {}", i), cx.state.extruder_drivers[i], -1, cx.where(cx.state.extruders_set)});
+      out.push_back({0, i, cx.state.extruder_drivers[i], -1, cx.where(cx.state.extruders_set)});
   return out;
 }
 
@@ -109,15 +110,15 @@ void check(const NodeContext& cx, Sink& out) {
     const Use& u = here[i];
     const Use* first = nullptr;
     for (size_t j = 0; j < i && !first; ++j)
-      if (here[j].driver == u.driver && here[j].who != u.who) first = &here[j];
+      if (here[j].driver == u.driver && !here[j].same_user(u)) first = &here[j];
     for (size_t j = 0; j < before.size() && !first; ++j)
       if (before[j].driver == u.driver) first = &before[j];
     if (!first) continue;
     const bool hidden = p_given && ((u.axis_index >= visible) || (first->axis_index >= visible));
     out.report(kMeta, hidden ? Severity::Info : Severity::Warning, u.where,
-               fmt::format("driver {} is assigned to {} but {} already uses it{}", u.driver.str(), u.who, first->who,
-                           hidden ? " (the axis is hidden with 'P', so this may be on purpose)" : ""))
-        .note(first->where, fmt::format("{} is mapped to driver {} here", first->who, u.driver.str()));
+               fmt::format("driver {} is assigned to {} but {} already uses it{}", u.driver.str(), u.who(),
+                           first->who(), hidden ? " (the axis is hidden with 'P', so this may be on purpose)" : ""))
+        .note(first->where, fmt::format("{} is mapped to driver {} here", first->who(), u.driver.str()));
   }
 }
 
