@@ -159,10 +159,17 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  for (const Command c : pf.commands) {
-    if (!c.has_number || c.number_expr || takes_rest_of_line(c.letter, c.number)) continue;
-    if (!may_have_one(t, c.span)) continue;
-    check_command(cx, c, out);
+  // A line's code holds its commands, so a line the pre-filter passes over has no command it would pass: most
+  // lines are skipped without decoding their commands.
+  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
+    if (pf.lines.kind(li) != LineKind::Commands || !may_have_one(t, pf.lines.code(li))) continue;
+    const Line line = pf.lines[li];
+    for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
+      const Command c = pf.commands[i];
+      if (!c.has_number || c.number_expr || takes_rest_of_line(c.letter, c.number)) continue;
+      if (!may_have_one(t, c.span)) continue;
+      check_command(cx, c, out);
+    }
   }
 }
 
