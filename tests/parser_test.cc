@@ -717,7 +717,7 @@ TEST_CASE("parser: a file parsed in parts on several threads parses as on one", 
   std::string many_params = "M92";
   for (int i = 0; i < 300; ++i) many_params += " X" + std::to_string(i);
   std::string text;
-  for (int i = 0; i < 4000; ++i) {
+  for (int i = 0; i < 14000; ++i) {
     text += kinds[(i * 7 + i / 13) % kinds.size()] + (i % 5 == 0 ? "\r\n" : "\n");
     if (i % 1000 == 999) text += many_params + "\n";
   }
@@ -729,6 +729,7 @@ TEST_CASE("parser: a file parsed in parts on several threads parses as on one", 
   CHECK(serial.find("\nR ") != std::string::npos);  // rich lines,
   CHECK(std::any_of(serial_parse.pf.commands.begin(), serial_parse.pf.commands.end(),
                     [](const Command& c) { return c.cnc; }));  // CNC-mode commands
+  CHECK(serial_parse.pf.commands.size() > 2 * 4096);  // and spans three of the blocks that find a command's part
   for (unsigned threads : {2u, 3u, 4u, 7u}) {
     for (size_t part : {size_t{1}, size_t{700}, text.size() / 3}) {
       INFO("threads " << threads << ", parts of " << part << " bytes");
