@@ -21,6 +21,9 @@ does not include the physical axis of the same name, e.g. `M563 P1 … X3` (X mo
   where a calibrated value will later be typed, and then it does nothing.
 - Silent for a zero when the same line also sets the mapped axis (`G10 P1 X0 Y0 U0`), as generated configs do,
   and for values written as expressions, tools created inside an `if` or with an unknown map.
+- With X and Y swapped (`M563 P1 … X1 Y0`) the tool drives neither physical X nor physical Y (each is driven only
+  by a tool whose own map for that letter includes it), so both offsets are reported and the message says that
+  an offset on the other letter would not be applied either.
 
 ## Why is this bad?
 RRF applies offsets per *physical* axis: for each axis driven by the tool it subtracts the tool's offset for
@@ -43,8 +46,9 @@ G10 P1 U-0.4 Y0.1 Z0
 ```
 
 ## Fix safety
-When the map has exactly one axis and the line has no offset for it yet, the fix renames the letter (`X-0.4` →
-`U-0.4`). It is unsafe: the offset then takes effect and moves the nozzle.
+When the map has exactly one axis, the tool drives that axis and the line has no offset for it yet, the fix
+renames the letter (`X-0.4` → `U-0.4`). It is unsafe: the offset then takes effect and moves the nozzle. With X
+and Y swapped there is no fix: renaming X to Y would put the offset on an axis the tool does not drive either.
 
 ## References
 - rrflint: [Tool offsets and axis mapping](../firmware-behaviour.md#tool-offsets-and-axis-mapping)
@@ -53,6 +57,16 @@ When the map has exactly one axis and the line has no offset for it yet, the fix
 - RepRapFirmware 3.5.3: [GCodes.cpp](https://github.com/Duet3D/RepRapFirmware/blob/3.5.3/src/GCodes/GCodes.cpp) (`ToolOffsetTransform()`)
 )md",
 };
+
+/// Does the tool move physical axis `axis`? X, Y and Z (Z from 3.5; before, Z has no map) only when the tool's own
+/// map for that letter includes them (GCodes.cpp ToolOffsetTransform()); any other axis always, from the letter
+/// that maps to it. An unknown map answers `unknown`.
+bool drives_axis(const MachineState& s, const Tool& t, int axis, bool unknown) {
+  const std::pair<char, const AxisMap*> own[] = {{'X', &t.xmap}, {'Y', &t.ymap}, {'Z', &t.zmap}};
+  for (auto [L, map] : own)
+    if (s.axis_index(L) == axis) return map->known ? (map->bits & (1u << axis)) != 0 : unknown;
+  return true;
+}
 
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is('G', 10)) return;
@@ -73,28 +87,31 @@ void check(const NodeContext& cx, Sink& out) {
     auto v = get_float(pf, c, L);
     if (!v.known()) continue;
     const std::string mapped = s.axis_letters(map->bits);
-    bool sets_mapped = false;
+    bool sets_mapped = false, any_driven = false;
     int single = -1, count = 0;
     for (int i = 0; i < static_cast<int>(s.axes.size()) && i < 32; ++i) {
       if (!(map->bits & (1u << i))) continue;
       ++count;
       single = i;
       if (pf.find(c, s.axes[static_cast<size_t>(i)].letter)) sets_mapped = true;
+      if (drives_axis(s, *t, i, true)) any_driven = true;
     }
     const bool zero = v.value == 0;
     if (zero && sets_mapped) continue;
-    std::string msg = zero
-                          ? fmt::format(
-                                "{} sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; "
-                                "a calibrated value belongs on {}",
-                                tools::quote(pf, c), L, ref.number, L, mapped, mapped)
-                          : fmt::format(
-                                "{} sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, "
-                                "it applies the {} offset instead",
-                                tools::quote(pf, c), L, ref.number, L, mapped, mapped);
+    // X and Y swapped (`M563 … X1 Y0`): the tool drives neither physical axis, so no offset of either is applied.
+    const std::string neither =
+        fmt::format("{} on {}, which the tool does not drive either (its own {} map leaves it out)",
+                    zero ? "nor would one be" : "nor an offset", mapped, mapped);
+    std::string msg =
+        zero ? fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: the offset is never used; {}",
+                           tools::quote(pf, c), L, ref.number, L, mapped,
+                           any_driven ? fmt::format("a calibrated value belongs on {}", mapped) : neither)
+             : fmt::format("{} sets the {} offset of tool {}, whose {} is mapped to {}: RRF never applies it, {}",
+                           tools::quote(pf, c), L, ref.number, L, mapped,
+                           any_driven ? fmt::format("it applies the {} offset instead", mapped) : neither);
     Report r = out.report(kMeta, zero ? Severity::Info : kMeta.severity, cx.at(v.param->span), std::move(msg));
     r.note(cx.where(map->origin), fmt::format("{} of tool {} is mapped to {} here", L, ref.number, mapped));
-    if (count == 1 && !sets_mapped && single < static_cast<int>(s.axes.size())) {
+    if (count == 1 && !sets_mapped && single < static_cast<int>(s.axes.size()) && drives_axis(s, *t, single, false)) {
       const char to = s.axes[static_cast<size_t>(single)].letter;
       r.fix(
           Fix::unsafe(fmt::format("use {} instead of {}", tools::axis_name(to), L),
