@@ -17,7 +17,29 @@ inline bool parses_whole(const ParsedFile& pf, const Command& c) {
          std::none_of(pf.semicolon_cuts.begin(), pf.semicolon_cuts.end(), inside);
 }
 
-/// Is text appended to the command read as parameters (parses_whole)?
-inline bool appendable(const NodeContext& cx) { return parses_whole(cx.parsed(), cx.command()); }
+/// Does the command end inside a CNC-mode comment that no ')' closes (`G10 P0 X1 (left tool`)? RRF reads such a
+/// comment to the end of the line, so text appended to the command would be part of it (found by fuzzing: the
+/// append fix came back every round). Quotes and `{…}` outside a comment hide their parentheses, as in RRF.
+inline bool ends_in_open_comment(const ParsedFile& pf, const Command& c) {
+  if (!c.cnc) return false;
+  const std::string_view t = pf.source->text();
+  bool quoted = false, comment = false;
+  int braces = 0;
+  for (uint32_t k = c.span.begin; k < c.span.end; ++k) {
+    const char ch = t[k];
+    if (comment) comment = ch != ')';
+    else if (ch == '"') quoted = !quoted;
+    else if (quoted) continue;
+    else if (ch == '{') ++braces;
+    else if (ch == '}') braces -= braces > 0;
+    else if (ch == '(' && braces == 0) comment = true;
+  }
+  return comment;
+}
+
+/// Is text appended to the command read as parameters (parses_whole, and no open CNC comment at its end)?
+inline bool appendable(const NodeContext& cx) {
+  return parses_whole(cx.parsed(), cx.command()) && !ends_in_open_comment(cx.parsed(), cx.command());
+}
 
 }  // namespace rrflint::tools

@@ -43,7 +43,8 @@ G10 P0 X0 Y0 Z0
 
 ## Fix safety
 The fix appends ` Z0` right after the last parameter, before any comment. Z is 0 at that point, so the line
-keeps its meaning: safe.
+keeps its meaning: safe. There is no fix where the appended text would not be read as a parameter: after an
+unterminated string or `{`, a ';' that cuts an expression open, or a CNC-mode `(` comment that no `)` closes.
 
 ## References
 - rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [M563 tools](../firmware-behaviour.md#m563-tools)

@@ -58,7 +58,8 @@ G10 P0 X21.5 Y-0.3 Z-1.2
 When the model knows the Z value from a literal G10 earlier in the boot sequence, the fix appends it
 (` Z-1.2`) right after the last parameter, before any comment. That keeps what the line does and makes it
 visible, so it is safe. There is no fix for a Z loaded from config-override.g or measured by M585: writing
-that value into config.g would freeze it.
+that value into config.g would freeze it, nor where the appended text would not be read as a parameter (after an
+unterminated string or `{`, a ';' that cuts an expression open, or a CNC-mode `(` comment that no `)` closes).
 
 ## References
 - rrflint: [G10 forms](../firmware-behaviour.md#g10-forms), [Saved settings: M500, M501, M502](../firmware-behaviour.md#saved-settings-m500-m501-m502)
