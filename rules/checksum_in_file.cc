@@ -33,6 +33,12 @@ N10 M584 X0 Y1 Z2 E3*99
 M584 X0 Y1 Z2 E3
 ```
 
+## Fix safety
+The fix removes the line number, and the checksum after it. Without a checksum it is safe: only RRF's error
+messages change, to the real line number. With a 1–3 digit checksum that matches it is safe: the line runs now and
+runs the same after. With a checksum that does not match, or a CRC (rrflint does not check CRCs), the fix is
+unsafe: RRF drops that line now, and after the fix it would run; read the line before you apply it.
+
 ## References
 - rrflint: [Line numbers and checksums](../firmware-behaviour.md#line-numbers-and-checksums)
 - Duet3D G-code dictionary: [Checking](https://docs.duet3d.com/User_manual/Reference/Gcodes#checking) (line numbers, checksums and CRCs)
@@ -50,11 +56,14 @@ void check(const FileContext& cx, Sink& out) {
     uint32_t ne = n + 1;
     while (ne < line.span.end && lex::is_digit(t[ne])) ++ne;
     const std::string number = clip(t.substr(n, ne - n));
+    const bool has_code = line.code.begin < line.code.end && !line.after_nul;
     if (!line.checksum) {
-      out.report(kMeta, cx.at(Span{n, ne}),
-                 fmt::format("line number '{}' in a file: RRF reports errors with this number instead of the real "
-                             "line number",
-                             number));
+      Report r = out.report(kMeta, cx.at(Span{n, ne}),
+                            fmt::format("line number '{}' in a file: RRF reports errors with this number instead of "
+                                        "the real line number",
+                                        number));
+      if (has_code && line.code.begin >= ne)
+        r.fix(Fix::safe("remove the line number", Edit::remove(cx.at(Span{n, line.code.begin}))));
       continue;
     }
     // The checksum follows the code after blanks: find the '*' RRF stopped at.
@@ -66,22 +75,37 @@ void check(const FileContext& cx, Sink& out) {
     const std::string_view sum = t.substr(star, se - star);
     const size_t digits = sum.size() - 1;
     std::string verdict;
+    bool matches = false;
     if (digits >= 1 && digits <= 3) {
       unsigned expected = 0;
       for (uint32_t k = n; k < star; ++k) expected ^= static_cast<unsigned char>(t[k]);
       unsigned given = 0;
       for (char ch : sum.substr(1)) given = given * 10 + static_cast<unsigned>(ch - '0');
-      verdict = given == expected
-                    ? fmt::format("it matches now, but any edit of the line makes RRF drop it silently")
-                    : fmt::format("it is wrong (RRF computes *{}), so RRF silently drops this line", expected);
+      matches = given == expected;
+      verdict = matches ? fmt::format("it matches now, but any edit of the line makes RRF drop it silently")
+                        : fmt::format("it is wrong (RRF computes *{}), so RRF silently drops this line", expected);
     } else if (digits == 5) {
       verdict = "a wrong CRC makes RRF drop the line silently";
     } else {
       verdict = fmt::format("a checksum of {} digits is never valid, so RRF silently drops this line", digits);
     }
-    out.report(kMeta, cx.at(Span{n, ne}),
-               fmt::format("line number '{}' and checksum '{}' in a file: {}", number, clip(sum), verdict))
-        .note(cx.at(Span{star, se}), "the checksum");
+    Report r = out.report(kMeta, cx.at(Span{n, ne}),
+                          fmt::format("line number '{}' and checksum '{}' in a file: {}", number, clip(sum), verdict));
+    r.note(cx.at(Span{star, se}), "the checksum");
+    // Only blanks and a comment may follow the checksum: other text there is not code, and would become code.
+    uint32_t rest = se;
+    while (rest < line.span.end && (t[rest] == ' ' || t[rest] == '\t')) ++rest;
+    if (!has_code || star < line.code.end || (rest < line.span.end && t[rest] != ';')) continue;
+    // The fix rewrites the line from its start to the end of the checksum (an edit of part of that is withdrawn,
+    // lint/engine/linter.cc). Safe only when the checksum matches: the line runs now and will run the same. A line
+    // RRF drops now (or may drop: a CRC rrflint does not check) would start to run.
+    std::string text(t.substr(line.span.begin, n - line.span.begin));
+    text += t.substr(line.code.begin, line.code.end - line.code.begin);
+    const Edit edit = Edit::replace(cx.at(Span{line.span.begin, se}), std::move(text));
+    if (matches) r.fix(Fix::safe("remove the line number and checksum", edit));
+    else if (digits == 5)
+      r.fix(Fix::unsafe("remove the line number and CRC (if the CRC is wrong, the line would run)", edit));
+    else r.fix(Fix::unsafe("remove the line number and checksum (RRF drops this line now; it would run)", edit));
   }
 }
 

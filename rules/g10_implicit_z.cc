@@ -64,7 +64,7 @@ void check(const NodeContext& cx, Sink& out) {
   Report r = out.report(kMeta, cx.at(cx.command().span),
                         fmt::format("{} leaves the Z offset of tool {} implicit (it is 0 here): write 'Z0'",
                                     tools::quote(cx.parsed(), cx.command()), m->tool));
-  if (tools::appendable(cx)) r.fix(tools::append_z(cx, "0"));
+  if (tools::appendable_z(cx, "0")) r.fix(tools::append_z(cx, "0"));
 }
 
 }  // namespace

@@ -108,7 +108,7 @@ void check(const NodeContext& cx, Sink& out) {
                                     "set Z on this line too",
                                     tools::quote(pf, c), m->tool, why));
   if (m->z.origin != kNoNode) r.note(cx.where(m->z.origin), fmt::format("tool {} gets its Z offset here", m->tool));
-  if (!value.empty() && !m->probed && tools::appendable(cx)) r.fix(tools::append_z(cx, value));
+  if (!value.empty() && !m->probed && tools::appendable_z(cx, value)) r.fix(tools::append_z(cx, value));
 }
 
 }  // namespace

@@ -669,6 +669,21 @@ TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "
   CHECK_FALSE(r.diagnostics[0].fix);
 }
 
+TEST_CASE("no fix edits inside a line whose checksum it would break", "[robustness][fix]") {
+  // `N5 G10 P1 S200*29` runs while its checksum matches; RRF307's M568 in place of the G10 would break the checksum
+  // and RRF would drop the line silently. Every rule's fix is withdrawn there (lint_machine); the same G10 with a
+  // line number and no checksum keeps its fix.
+  SourceManager sm;
+  MachineResult r =
+      lint_one_rule(sm, "M584 X0 Y1 Z2 E3\nM563 P0 D0\nM563 P1 D0\nN5 G10 P1 S200*29\nN6 G10 P0 S200\n", "RRF307");
+  REQUIRE(r.diagnostics.size() == 2);
+  CHECK(r.diagnostics[0].code == "RRF307");
+  CHECK(r.diagnostics[0].loc.span.begin == 42);  // the checksummed G10
+  CHECK_FALSE(r.diagnostics[0].fix);
+  REQUIRE(r.diagnostics[1].fix);
+  CHECK(r.diagnostics[1].fix->title == "replace with 'M568 P0 S200'");
+}
+
 TEST_CASE("one round of --fix moves a run of a tool's lines after its M563 (found by fuzz_fix)", "[robustness][fix]") {
   // RRF301 moved one line per round (each line's fix inserted at the same point, which apply_fixes takes one at a
   // time): twelve G10 lines for tool 0 needed twelve rounds, past --fix's ten. The first line's fix now moves the
@@ -879,4 +894,59 @@ TEST_CASE("RRF301's fix gives up past 256 other tools' lines between the G10 and
   REQUIRE(r.diagnostics.size() == 1);
   CHECK(r.diagnostics[0].message.find("does not exist yet") != std::string::npos);
   CHECK_FALSE(r.diagnostics[0].fix);
+}
+
+namespace {
+
+// The reference: walk a line from its start, a code point at a time (an invalid byte is one code point).
+size_t walk_floor(std::string_view s, size_t off, uint32_t* before = nullptr, bool round_up = false) {
+  size_t i = 0;
+  uint32_t n = 0;
+  while (i < off && i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 1;
+    if (i + len > s.size()) len = 1;
+    for (size_t k = 1; k < len; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) len = 1;
+    if (i + len > off && !round_up) break;
+    i += len;
+    ++n;
+  }
+  if (before) *before = n;
+  return std::min(i, s.size());
+}
+
+}  // namespace
+
+TEST_CASE("columns and character boundaries on long lines are found near the offset, as a walk from the start would",
+          "[robustness]") {
+  // position() and code_point_floor() walked each line from its start: a long line of many commands, a finding
+  // each, cost the square of its length to render (a 260 KB line: 5 s for JSON, 14 s for SARIF).
+  const char alphabet[] = {'a', ' ', '\x80', '\xBF', '\xC3', '\xE2', '\xF0', '\xF5', '\xC0', '\n'};
+  uint32_t seed = 12345;
+  auto next = [&] { return seed = seed * 1103515245u + 12345u; };
+  for (int round = 0; round < 200; ++round) {
+    std::string text;
+    const size_t n = next() % 60;
+    for (size_t k = 0; k < n; ++k) text += alphabet[(next() >> 8) % sizeof alphabet];
+    SourceManager sm;
+    const SourceFile& f = sm.add("c.g", "/sys/c.g", text);
+    for (size_t off = 0; off <= text.size() + 1; ++off) CHECK(code_point_floor(text, off) == walk_floor(text, off));
+    // Offsets in a random order, and in order: the per-thread memory of the last count must not leak into the
+    // next one.
+    std::vector<uint32_t> offsets;
+    for (uint32_t off = 0; off <= text.size(); ++off) offsets.push_back(off);
+    for (int pass = 0; pass < 2; ++pass) {
+      for (uint32_t off : offsets)
+        for (bool up : {false, true}) {
+          const LineCol at = f.position(off, up);
+          const Span line = f.line_span(at.line - 1);
+          const std::string_view s = std::string_view(text).substr(line.begin, line.end - line.begin);
+          uint32_t before = 0;
+          walk_floor(s, std::min(off, line.end) - line.begin, &before, up);
+          CHECK(at.column == before + 1 + (off > line.end ? 1 : 0));
+        }
+      for (size_t k = offsets.size(); k > 1; --k) std::swap(offsets[k - 1], offsets[next() % k]);
+    }
+  }
 }

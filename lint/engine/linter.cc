@@ -1,6 +1,7 @@
 #include "lint/engine/linter.h"
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 #include <optional>
 #include <set>
@@ -158,6 +159,44 @@ void drop_findings_in_firmware_written_files(MachineResult& res, const Machine& 
     if (file_role(m.unit(i).sd_path) == FileRole::Resurrect) written.insert(m.unit(i).source->id());
   if (written.empty()) return;
   std::erase_if(res.diagnostics, [&](const Diagnostic& d) { return written.count(d.loc.file) != 0; });
+}
+
+// 10. A line with a line number and a checksum (`N10 G10 P0 X1*104`, RRF110) runs only while its checksum
+// matches, and an edit inside it breaks the checksum: RRF would then drop the whole line silently. A fix with
+// such an edit is withdrawn (the finding stays, and RRF110 reports the checksum). An edit that rewrites the line
+// from its start to the end of the checksum (RRF110's own fix, or one that replaces the whole line) writes its own
+// text and keeps its fix.
+void drop_fixes_on_checksummed_lines(MachineResult& res, const Machine& m) {
+  std::map<FileId, std::vector<Span>> summed;  // by file: each checksummed line to the end of its checksum, in order
+  for (uint32_t i = 0; i < m.unit_count(); ++i) {
+    const FileUnit& u = m.unit(i);
+    if (!u.parsed.prefilters.any_line_number) continue;  // a checksum follows a line number
+    const std::string_view t = u.source->text();
+    std::vector<Span> spans;
+    for (const Line& line : u.parsed.lines) {
+      if (!line.checksum) continue;
+      uint32_t e = line.code.end;
+      while (e < line.span.end && t[e] != '*') ++e;
+      if (e < line.span.end) ++e;
+      while (e < line.span.end && t[e] >= '0' && t[e] <= '9') ++e;
+      spans.push_back(Span{line.span.begin, e});
+    }
+    if (!spans.empty()) summed.emplace(u.source->id(), std::move(spans));
+  }
+  if (summed.empty()) return;
+  auto breaks_a_checksum = [&](const Edit& e) {
+    auto f = summed.find(e.loc.file);
+    if (f == summed.end()) return false;
+    const std::vector<Span>& lines = f->second;
+    // The first checksummed line that does not end before the edit begins.
+    auto it = std::lower_bound(lines.begin(), lines.end(), e.loc.span.begin,
+                               [](const Span& l, uint32_t b) { return l.end < b; });
+    for (; it != lines.end() && it->begin <= e.loc.span.end; ++it)
+      if (!(e.loc.span.begin <= it->begin && e.loc.span.end >= it->end)) return true;
+    return false;
+  };
+  for (Diagnostic& d : res.diagnostics)
+    if (d.fix && std::any_of(d.fix->edits.begin(), d.fix->edits.end(), breaks_a_checksum)) d.fix.reset();
 }
 
 }  // namespace
@@ -358,6 +397,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   trace::mark("suppressions");
   drop_after_first_line_of_cr_files(res, sources, rules);
   drop_findings_in_firmware_written_files(res, m);
+  drop_fixes_on_checksummed_lines(res, m);
   return res;
 }
 
