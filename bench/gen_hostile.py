@@ -15,6 +15,9 @@ the same size.
                walked every later (or earlier) node
   override     a config-override.g of 60,000 lines loaded by an M501 that 40,000 lines follow: each later line
                walked the whole run (to find its end, and the last line that set the same thing)
+  longline     one line of 20,000 G10 commands with a finding each, and a non-ASCII comment: each finding's column,
+               snippet and SARIF fingerprint walked the line from its start, and each append fix parsed it again
+               (5 s as JSON, 14 s as SARIF for 260 KB); run as JSON and as SARIF
 
 Usage: gen_hostile.py OUT_DIR   (writes OUT_DIR/<shape>/sys/...)
 """
@@ -66,6 +69,8 @@ def main():
         "config-override.g": "".join(f"M307 H{i % 8} R2 K0.3 D5 E1.35 V24\nG10 P{i % 50} X1 Y1 Z0\nM208 X{i} Y200\n"
                                      for i in range(n)),
     })
+    card(out, "longline", {"config.g": "M584 X0 Y1 Z2 E3\nM563 P0 D0 H1 S\"Düse\"\n" +
+                           "G10 P0 X0 Y0 " * n + "; Düse\n"})
 
 
 if __name__ == "__main__":

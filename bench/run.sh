@@ -143,6 +143,9 @@ hostile=()
 for shape in diamond tools suppression g10s ranges parens devices override; do
   hostile+=(-n "rrflint $shape" "${check[*]} $out/hostile/$shape >/dev/null 2>&1")
 done
+# longline's findings are RRF331's (an info, not in the default set): every rule runs on it.
+hostile+=(-n "rrflint longline" "${check[*]} --select all $out/hostile/longline >/dev/null 2>&1")
+hostile+=(-n "rrflint longline as SARIF" "${check[*]} --select all --format sarif $out/hostile/longline >/dev/null 2>&1")
 hyperfine --warmup 1 --runs "$big_runs" -i --export-json "$out/p7.json" "${hostile[@]}"
 # And every fixture repeated to 0.5 and 1 MB, then again with its device numbers varied per copy: a look-ahead
 # that walks the nodes per command shows as a time that grows faster than the input (bench/repeat_fixtures.py marks

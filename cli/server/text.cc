@@ -55,7 +55,8 @@ nlohmann::json range_json(const SourceFile& f, Span s) {
       if (off >= text.end + f.terminator(line).size()) return nlohmann::json{{"line", line + 1}, {"character", 0}};
       off = text.end;
     }
-    const uint32_t ch = utf16_before(f.slice(text), off - text.begin, round_up);
+    // ASCII: a byte is a UTF-16 unit (and a long line of many findings is not walked once per finding).
+    const uint32_t ch = f.any_high() ? utf16_before(f.slice(text), off - text.begin, round_up) : off - text.begin;
     return nlohmann::json{{"line", line}, {"character", ch}};
   };
   return {{"start", pos(s.begin, false)}, {"end", pos(std::max(s.begin, s.end), true)}};

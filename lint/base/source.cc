@@ -1,6 +1,7 @@
 #include "lint/base/source.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 
 #if defined(__SSE2__)
@@ -69,6 +70,8 @@ TextBuffer TextBuffer::mapped(const char* data, size_t size) {
 
 SourceFile::SourceFile(FileId id, std::string display, std::string sd_path, TextBuffer bytes, unsigned threads)
     : id_(id), display_(std::move(display)), sd_path_(std::move(sd_path)), bytes_(std::move(bytes)) {
+  static std::atomic<uint64_t> serials{0};
+  serial_ = ++serials;
   const char* base = bytes_.data();
   const size_t n = bytes_.size();
   reserve_huge(line_starts_, n / 16 + 1);  // untouched pages cost nothing; a reallocation would copy
@@ -125,13 +128,44 @@ std::string_view SourceFile::terminator(uint32_t line0) const {
   return std::string_view(bytes_).substr(e, next - e);
 }
 
+namespace {
+size_t code_point_length(std::string_view s, size_t i);
+}  // namespace
+
 LineCol SourceFile::position(uint32_t offset, bool round_up) const {
   offset = std::min(offset, size());
   uint32_t line0 = line_of(offset);
   uint32_t start = line_starts_[line0];
   const uint32_t line_e = line_end(line0);
   uint32_t end = std::min(offset, line_e);
-  uint32_t col = code_points_before(std::string_view(bytes_).substr(start, line_e - start), end - start, round_up) + 1;
+  uint32_t col = 1;
+  if (!any_high_) {
+    col += end - start;  // ASCII: one byte, one column
+  } else {
+    // Findings are rendered in order, many of them on one line (a long line of many commands): each thread
+    // remembers where its last count on a line stopped and counts on from there, so that the columns of a line's
+    // findings cost the line's length once, not once per finding.
+    thread_local struct {
+      uint64_t serial = 0;
+      uint32_t line0 = 0, byte = 0, count = 0;  // `count` code points before `byte`, a code point's start
+    } last;
+    const std::string_view s = std::string_view(bytes_).substr(start, line_e - start);
+    size_t i = 0;
+    uint32_t count = 0;
+    if (last.serial == serial_ && last.line0 == line0 && last.byte <= end - start) {
+      i = last.byte;
+      count = last.count;
+    }
+    const size_t off = end - start;
+    while (i < off && i < s.size()) {
+      const size_t len = code_point_length(s, i);
+      if (i + len > off && !round_up) break;  // `off` falls inside this code point: its start
+      i += len;
+      ++count;
+    }
+    last = {serial_, line0, static_cast<uint32_t>(i), count};
+    col += count;
+  }
   if (offset > line_e) col += 1;  // inside the terminator: one past the line end
   return LineCol{line0 + 1, col};
 }
@@ -152,13 +186,19 @@ size_t code_point_length(std::string_view s, size_t i) {
 }  // namespace
 
 size_t code_point_floor(std::string_view s, size_t off) {
-  size_t i = 0;
-  while (i < off && i < s.size()) {
+  // Found near `off`, not by walking from the start (a snippet on a long line asks once per finding): every byte
+  // that is not a continuation byte (10xxxxxx) starts a code point, and a code point is at most 4 bytes long, so
+  // the walk starts at the nearest such byte at most 3 bytes back; with none there, `off` starts its own.
+  if (off >= s.size()) return s.size();
+  auto continuation = [&](size_t k) { return (static_cast<unsigned char>(s[k]) & 0xC0) == 0x80; };
+  size_t i = off;
+  while (i > 0 && off - i < 3 && continuation(i)) --i;
+  if (continuation(i)) return off;
+  while (true) {
     const size_t next = i + code_point_length(s, i);
     if (next > off) return i;
     i = next;
   }
-  return std::min(off, s.size());
 }
 
 size_t code_point_ceil(std::string_view s, size_t off) {

@@ -128,6 +128,7 @@ class SourceFile {
   std::vector<uint32_t> line_starts_;
   LineEndings endings_;
   bool any_nul_ = false, any_del_ = false, any_high_ = false;
+  uint64_t serial_;  // unique per file of the run (keys position()'s per-thread memory)
 };
 
 inline uint32_t SourceFile::line_end(uint32_t line0) const {

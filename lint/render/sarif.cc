@@ -188,30 +188,51 @@ void write_rule(JsonWriter& w, const Rule& r, std::string_view docs_base) {
 }
 
 // A stable fingerprint: the rule and the trimmed text of the finding's line, hashed (FNV-1a), plus the
-// occurrence of that hash in the file (GitHub's "hash:n" shape). It survives lines moving up or down.
-std::string line_hash(const SourceManager& sm, const Diagnostic& d, std::map<std::string, int>& seen) {
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&](std::string_view s) {
-    for (unsigned char c : s) {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-  };
-  mix(d.code);
-  mix("\x1f");
-  if (d.loc.file != kNoFile) {
-    const SourceFile& f = sm.get(d.loc.file);
-    if (f.line_count() > 0) {
-      std::string_view line = f.slice(f.line_span(f.line_of(std::min(d.loc.span.begin, f.size()))));
-      while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
-      while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
-      mix(line);
-    }
+// occurrence of that hash in the file (GitHub's "hash:n" shape). It survives lines moving up or down. The hashes
+// of the line the last finding was on are kept by rule: findings come in order, and a long line of many commands
+// with a finding each would otherwise be hashed once per finding (the square of its length).
+class Fingerprints {
+ public:
+  std::string operator()(const SourceManager& sm, const Diagnostic& d) {
+    const std::string hex = fmt::format("{:016x}", hash(sm, d));
+    const int n = ++seen_[fmt::format("{}\x1f{}", d.loc.file, hex)];
+    return fmt::format("{}:{}", hex, n);
   }
-  std::string hex = fmt::format("{:016x}", h);
-  const int n = ++seen[fmt::format("{}\x1f{}", d.loc.file, hex)];
-  return fmt::format("{}:{}", hex, n);
-}
+
+ private:
+  uint64_t hash(const SourceManager& sm, const Diagnostic& d) {
+    uint64_t h = 1469598103934665603ull;
+    auto mix = [&](std::string_view s) {
+      for (unsigned char c : s) {
+        h ^= c;
+        h *= 1099511628211ull;
+      }
+    };
+    mix(d.code);
+    mix("\x1f");
+    if (d.loc.file == kNoFile) return h;
+    const SourceFile& f = sm.get(d.loc.file);
+    if (f.line_count() == 0) return h;
+    const uint32_t line0 = f.line_of(std::min(d.loc.span.begin, f.size()));
+    if (d.loc.file != file_ || line0 != line0_) {
+      file_ = d.loc.file;
+      line0_ = line0;
+      by_rule_.clear();
+    }
+    if (auto it = by_rule_.find(d.code); it != by_rule_.end()) return it->second;
+    std::string_view line = f.slice(f.line_span(line0));
+    while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+    while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    mix(line);
+    by_rule_.emplace(d.code, h);
+    return h;
+  }
+
+  std::map<std::string, int> seen_;
+  FileId file_ = kNoFile;
+  uint32_t line0_ = 0;
+  std::map<std::string, uint64_t, std::less<>> by_rule_;
+};
 
 }  // namespace
 
@@ -219,7 +240,7 @@ namespace {
 
 // One result; `index`: each rule's place in tool.driver.rules.
 void write_result(JsonWriter& w, const SourceManager& sm, UriMaker& uris, const Diagnostic& d,
-                  const std::map<std::string_view, size_t>& index, std::map<std::string, int>& seen) {
+                  const std::map<std::string_view, size_t>& index, Fingerprints& fingerprints) {
   w.begin_object();
   if (d.fix && !d.fix->edits.empty()) {
     // One artifactChange per file, edits in order.
@@ -266,7 +287,7 @@ void write_result(JsonWriter& w, const SourceManager& sm, UriMaker& uris, const 
   write_text(w, "message", sanitize(d.message));
   w.key("partialFingerprints");
   w.begin_object();
-  w.member("primaryLocationLineHash", line_hash(sm, d, seen));
+  w.member("primaryLocationLineHash", fingerprints(sm, d));
   w.end_object();
   w.key("properties");
   w.begin_object();
@@ -335,9 +356,9 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
     for (const Rule* r : o.rules->all()) index.emplace(r->meta.code, index.size());
   w.key("results");
   w.begin_array();
-  std::map<std::string, int> seen;
+  Fingerprints fingerprints;
   for (const Diagnostic& d : diags) {
-    write_result(w, sm, uris, d, index, seen);
+    write_result(w, sm, uris, d, index, fingerprints);
     flush();
   }
   w.end_array();
