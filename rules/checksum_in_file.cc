@@ -11,6 +11,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF110",
     .name = "checksum-in-file",
     .severity = Severity::Warning,
+    .fix = FixAvailability::Sometimes,
     .summary = "A line number (N…) or checksum (*…) in a file.",
     .docs = R"md(
 ## What it does

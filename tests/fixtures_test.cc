@@ -243,6 +243,13 @@ void run_case(FixtureCase& c) {
     FAIL_CHECK(display(c, f.sd_path) << ":" << f.line << ":" << f.column << ": unexpected " << f.rule << ": "
                                      << f.message);
   }
+  // A fix from a rule whose metadata says it has none (the README's "fix" column and the docs say so too).
+  for (const Finding& f : run->findings) {
+    const Rule* r = builtin_rules().find(f.rule);
+    if (f.diag && f.diag->fix && r && r->meta.fix == FixAvailability::None)
+      FAIL_CHECK(display(c, f.sd_path) << ":" << f.line << ": " << f.rule << " offers a fix, but its RuleMeta says "
+                                       << "FixAvailability::None");
+  }
 
   if (!c.fixed.empty()) check_fixes(c, opts);
 }
