@@ -134,6 +134,29 @@ TEST_CASE("server: a range that starts or ends inside a character covers it, in 
   CHECK(f.position(7, true).column == 7);
 }
 
+TEST_CASE("server: the UTF-16 columns of many ranges on one line, in any order, are those counted from its start",
+          "[server]") {
+  // Each thread counts on from its last count on a line (a long line of many findings was walked per finding):
+  // the memory must never leak into a count on another line, file or earlier offset.
+  const std::string line = "G1 ; \xE2\x82\xAC \xF0\x9F\x98\x80 \xC3 x\xE2\x82 \xC3\xBC";
+  rrflint::SourceManager sm;
+  const rrflint::SourceFile& f = sm.add("c.g", "/sys/c.g", line + "\n\xC3\xBC\xE2\x82\xAC" + line + "\n");
+  const rrflint::SourceFile& g = sm.add("d.g", "/sys/d.g", line + "\n");
+  uint32_t seed = 7;
+  for (int k = 0; k < 2000; ++k) {
+    seed = seed * 1103515245u + 12345u;
+    const rrflint::SourceFile& h = (seed >> 20) % 3 ? f : g;
+    const auto off = static_cast<uint32_t>((seed >> 8) % h.size());
+    const uint32_t line0 = h.line_of(off);
+    const rrflint::Span ls = h.line_span(line0);
+    if (off > ls.end) continue;
+    const json r = range_json(h, rrflint::Span{off, off});
+    CHECK(r["start"]["line"] == line0);
+    CHECK(r["start"]["character"] == utf16_before(h.slice(ls), off - ls.begin, false));
+    CHECK(r["end"]["character"] == utf16_before(h.slice(ls), off - ls.begin, true));
+  }
+}
+
 TEST_CASE("server: incremental changes", "[server]") {
   std::string t = "M563 P0 S\"D\xC3\xBCse \xF0\x9F\x98\x80 don't\"\nG10\n";
   apply_change(t, {0, 21}, {0, 22}, "");  // the apostrophe, after ü and an emoji

@@ -31,15 +31,24 @@ size_t utf8_step(std::string_view s, size_t i, uint32_t& units) {
 
 uint32_t utf16_length(std::string_view s) { return utf16_before(s, s.size(), false); }
 
-uint32_t utf16_before(std::string_view s, size_t off, bool round_up) {
-  uint32_t n = 0, units = 0;
-  for (size_t i = 0; i < off && i < s.size();) {
+namespace {
+// Counts on from byte `i` of `s` (a character's start), `n` UTF-16 units before it, to byte `off`; leaves `i` where
+// the count stopped (a character's start).
+uint32_t utf16_count(std::string_view s, size_t& i, uint32_t n, size_t off, bool round_up) {
+  uint32_t units = 0;
+  while (i < off && i < s.size()) {
     const size_t len = utf8_step(s, i, units);
     if (i + len > off && !round_up) break;  // `off` falls inside this character: its start
     i += len;
     n += units;
   }
   return n;
+}
+}  // namespace
+
+uint32_t utf16_before(std::string_view s, size_t off, bool round_up) {
+  size_t i = 0;
+  return utf16_count(s, i, 0, off, round_up);
 }
 
 nlohmann::json range_json(const SourceFile& f, Span s) {
@@ -55,8 +64,23 @@ nlohmann::json range_json(const SourceFile& f, Span s) {
       if (off >= text.end + f.terminator(line).size()) return nlohmann::json{{"line", line + 1}, {"character", 0}};
       off = text.end;
     }
-    // ASCII: a byte is a UTF-16 unit (and a long line of many findings is not walked once per finding).
-    const uint32_t ch = f.any_high() ? utf16_before(f.slice(text), off - text.begin, round_up) : off - text.begin;
+    // ASCII: a byte is a UTF-16 unit. Otherwise each thread counts on from where its last count on the same line
+    // stopped (a long line of many findings is not walked once per finding), as SourceFile::position does.
+    uint32_t ch = off - text.begin;
+    if (f.any_high()) {
+      thread_local struct {
+        uint64_t serial = 0;
+        uint32_t line = 0, byte = 0, units = 0;
+      } last;
+      size_t i = 0;
+      uint32_t n = 0;
+      if (last.serial == f.serial() && last.line == line && last.byte <= off - text.begin) {
+        i = last.byte;
+        n = last.units;
+      }
+      ch = utf16_count(f.slice(text), i, n, off - text.begin, round_up);
+      last = {f.serial(), line, static_cast<uint32_t>(i), ch};
+    }
     return nlohmann::json{{"line", line}, {"character", ch}};
   };
   return {{"start", pos(s.begin, false)}, {"end", pos(std::max(s.begin, s.end), true)}};

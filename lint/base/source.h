@@ -116,6 +116,8 @@ class SourceFile {
   bool any_del() const { return any_del_; }
   /// Whether the buffer holds a byte of 0x80 or more (anything but ASCII), found by the same scan.
   bool any_high() const { return any_high_; }
+  /// Unique per file of the run: keys a per-thread memory of a count on one of its lines (position()'s).
+  uint64_t serial() const { return serial_; }
   /// The terminator after line `line0` ("\n", "\r\n", "\r" or "" at end of file).
   std::string_view terminator(uint32_t line0) const;
 
@@ -128,7 +130,7 @@ class SourceFile {
   std::vector<uint32_t> line_starts_;
   LineEndings endings_;
   bool any_nul_ = false, any_del_ = false, any_high_ = false;
-  uint64_t serial_;  // unique per file of the run (keys position()'s per-thread memory)
+  uint64_t serial_;
 };
 
 inline uint32_t SourceFile::line_end(uint32_t line0) const {
