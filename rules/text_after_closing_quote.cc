@@ -92,7 +92,7 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   std::vector<Param> params;
-  for (const uint32_t li : pf.prefilters.rich_lines) {
+  for (const uint32_t li : pf.prefilters.word_after_quote_lines) {
     if (pf.lines.kind(li) != LineKind::Commands || !lex::contains(t, pf.lines.code(li), '"')) continue;
     const Line& line = pf.lines[li];
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {

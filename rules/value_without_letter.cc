@@ -103,38 +103,6 @@ uint32_t stray_end(std::string_view t, uint32_t b, Span v) {
   return end;
 }
 
-/// Is the blank at `q`, which a value's first character follows, the end of a run of blanks that starts after a
-/// character other than a letter (`X 10` is X's value)? The run starts after s.begin + 1 at the earliest.
-bool stray_after(std::string_view t, Span s, uint32_t q) {
-  uint32_t j = q;
-  while (j > s.begin + 1 && lex::is_blank(t[j - 1])) --j;
-  return !lex::is_blank(t[j - 1]) && !lex::is_alpha(t[j - 1]);
-}
-
-/// Could this command hold a value without a letter? A blank followed by a value's first character, where the
-/// last character before the blanks is not a letter (`X 10`). Cheap, and true for every command the check reports:
-/// with SSE2 it tests 16 blanks at a time (most commands have none that a value follows).
-bool may_have_one(std::string_view t, Span s) {
-  uint32_t k = s.begin + 1;  // the blank's position; the value's is k + 1 < s.end
-#if defined(__SSE2__)
-  const char* p = t.data();
-  while (k + 1 < s.end && k + 17 <= t.size()) {
-    const __m128i here = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k));
-    const __m128i next = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k + 1));
-    const __m128i value = _mm_or_si128(_mm_or_si128(digits(next), any_of(next, '-', '+')),
-                                       _mm_or_si128(any_of(next, '.', '{'), _mm_cmpeq_epi8(next, _mm_set1_epi8('"'))));
-    auto m = static_cast<unsigned>(_mm_movemask_epi8(_mm_and_si128(any_of(here, ' ', '\t'), value)));
-    if (s.end - 1 - k < 16) m &= (1u << (s.end - 1 - k)) - 1;
-    for (; m != 0; m &= m - 1)
-      if (stray_after(t, s, k + static_cast<uint32_t>(__builtin_ctz(m)))) return true;
-    k += 16;
-  }
-#endif
-  for (; k + 1 < s.end; ++k)
-    if (lex::is_blank(t[k]) && starts_value(t[k + 1]) && stray_after(t, s, k)) return true;
-  return false;
-}
-
 void check_command(const FileContext& cx, const Command& c, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
@@ -159,15 +127,15 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  // A line's code holds its commands, so a line the pre-filter passes over has no command it would pass: most
-  // lines are skipped without decoding their commands.
-  for (uint32_t li = 0; li < pf.lines.size(); ++li) {
-    if (pf.lines.kind(li) != LineKind::Commands || !may_have_one(t, pf.lines.code(li))) continue;
+  // A line's code holds its commands, so a line the parse left out of the set (ParsedFile::Prefilters) has no
+  // command that may_hold_stray_value passes: most lines are skipped without reading them.
+  for (const uint32_t li : pf.prefilters.stray_value_lines) {
+    if (pf.lines.kind(li) != LineKind::Commands) continue;
     const Line line = pf.lines[li];
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command c = pf.commands[i];
       if (!c.has_number || c.number_expr || takes_rest_of_line(c.letter, c.number)) continue;
-      if (!may_have_one(t, c.span)) continue;
+      if (!may_hold_stray_value(t, c.span)) continue;
       check_command(cx, c, out);
     }
   }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -105,6 +106,78 @@ RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p
 #else
   return find_class(s, n, p, e, kBytes.rich, 0) < e;
 #endif
+}
+
+// Could the code [s.begin, s.end) of a command line hold a value without a letter (RRF120's `G1 X10 20`)? A blank
+// outside strings and expressions, followed by a value's first character (a digit, '-', '+', '.', '{' or '"'),
+// where the last byte before the blanks is neither a blank nor a letter (`X 10` is X's value). Cheap, and true for
+// every command that rule reports (ParsedFile::Prefilters::stray_value_lines): with SSE2 it tests 16 blanks at a
+// time, and walks the code byte by byte only after such a blank (`X{a + 1}` has one, inside the expression).
+inline bool may_hold_stray_value(std::string_view t, Span s) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  const auto starts_value = [](char c) {
+    return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == '{' || c == '"';
+  };
+  // Is the blank at q the end of a run of blanks that starts after such a byte (the run starts at s.begin + 1 at
+  // the earliest)?
+  const auto stray_after = [&](uint32_t q) {
+    uint32_t j = q;
+    while (j > s.begin + 1 && blank(t[j - 1])) --j;
+    return !blank(t[j - 1]) && !alpha(t[j - 1]);
+  };
+  // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) could throw the
+  // quote count off, so code with an apostrophe passes as it is.
+  const auto outside = [&] {
+    if (std::string_view(t.data() + s.begin, s.end - s.begin).find('\'') != std::string_view::npos) return true;
+    bool quoted = false;
+    uint32_t depth = 0;
+    for (uint32_t k = s.begin; k + 1 < s.end; ++k) {
+      const char c = t[k];
+      if (c == '"') quoted = !quoted;
+      else if (quoted) continue;
+      else if (c == '{') ++depth;
+      else if (c == '}') depth -= depth > 0;
+      else if (depth == 0 && k > s.begin && blank(c) && starts_value(t[k + 1]) && stray_after(k)) return true;
+    }
+    return false;
+  };
+  uint32_t k = s.begin + 1;  // the blank's position; the value's is k + 1 < s.end
+#if defined(__SSE2__)
+  const char* p = t.data();
+  while (k + 1 < s.end && k + 17 <= t.size()) {
+    const __m128i here = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k));
+    const __m128i next = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + k + 1));
+    const __m128i value = _mm_or_si128(_mm_or_si128(digits(next), any_of(next, '-', '+')),
+                                       _mm_or_si128(any_of(next, '.', '{'), _mm_cmpeq_epi8(next, _mm_set1_epi8('"'))));
+    auto m = static_cast<unsigned>(_mm_movemask_epi8(_mm_and_si128(any_of(here, ' ', '\t'), value)));
+    if (s.end - 1 - k < 16) m &= (1u << (s.end - 1 - k)) - 1;
+    for (; m != 0; m &= m - 1)
+      if (stray_after(k + static_cast<uint32_t>(__builtin_ctz(m)))) return outside();
+    k += 16;
+  }
+#endif
+  for (; k + 1 < s.end; ++k)
+    if (blank(t[k]) && starts_value(t[k + 1]) && stray_after(k)) return outside();
+  return false;
+}
+
+// Could the code [s.begin, s.end) hold a closing quote with two letters right after it (RRF117's `S"abc"def`)?
+// Quotes pair up from the start ("" inside a string closes and opens again). A character literal ('"', 3.5+) could
+// throw the pairing off, so code with an apostrophe and a quote passes as it is
+// (ParsedFile::Prefilters::word_after_quote_lines).
+inline bool may_have_word_after_quote(std::string_view t, Span s) {
+  const std::string_view code(t.data() + s.begin, s.end - s.begin);
+  if (code.find('"') == std::string_view::npos) return false;
+  if (code.find('\'') != std::string_view::npos) return true;
+  const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  for (size_t open = code.find('"'); open != std::string_view::npos; open = code.find('"', open)) {
+    const size_t close = code.find('"', open + 1);
+    if (close == std::string_view::npos) return false;
+    if (close + 2 < code.size() && alpha(code[close + 1]) && alpha(code[close + 2])) return true;
+    open = close + 1;
+  }
+  return false;
 }
 
 }  // namespace rrflint

@@ -193,11 +193,15 @@ class LineParser {
   void add_line(const Line& line, bool cut_by_del) {
     if (!line.code.empty() &&
         any_rich(lex_.t.data(), static_cast<uint32_t>(lex_.t.size()), line.code.begin, line.code.end)) {
-      rich_->insert(next_line_);
-      if (line.kind == LineKind::Commands && span_has(lex_.t, line.code, '(')) parens_->insert(next_line_);
-      if (span_has(lex_.t, line.code, '\'')) apostrophes_->insert(next_line_);
+      sets_->rich_lines.insert(next_line_);
+      if (line.kind == LineKind::Commands && span_has(lex_.t, line.code, '(')) sets_->paren_lines.insert(next_line_);
+      if (span_has(lex_.t, line.code, '\'')) sets_->apostrophe_lines.insert(next_line_);
+      if (line.kind == LineKind::Commands && may_have_word_after_quote(lex_.t, line.code))
+        sets_->word_after_quote_lines.insert(next_line_);
     }
-    if (span_has(lex_.t, line.comment, ':')) colon_comments_->insert(next_line_);
+    if (line.kind == LineKind::Commands && may_hold_stray_value(lex_.t, line.code))
+      sets_->stray_value_lines.insert(next_line_);
+    if (span_has(lex_.t, line.comment, ':')) sets_->colon_comment_lines.insert(next_line_);
     detail::LineRec* r;
     if (in_place_) {
       r = &in_place_[next_line_];
@@ -212,10 +216,8 @@ class LineParser {
 
   ParsedFile& out_;
   Lexer lex_;
-  LineSet* rich_ = &out_.prefilters.rich_lines;     // the file's set (a part of a file writes to the whole file's)
-  LineSet* parens_ = &out_.prefilters.paren_lines;  // likewise
-  LineSet* apostrophes_ = &out_.prefilters.apostrophe_lines;
-  LineSet* colon_comments_ = &out_.prefilters.colon_comment_lines;
+  // The line sets the parse fills: the file's (a part of a file writes to the whole file's).
+  ParsedFile::Prefilters* sets_ = &out_.prefilters;
   detail::LineRec* in_place_;
   uint32_t next_line_;     // the index of the next logical line
   bool next_cnc_ = false;  // the mode after this line (M453 / M451 / M452 take effect on the next line)

@@ -15,9 +15,8 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   pf.serial = ++serials;
   pf.source = &file;
   pf.lines.source_ = &file;
-  pf.prefilters.rich_lines.resize(file.line_count() + 1);  // NUL bytes add logical lines: insert() grows the set then
-  for (LineSet* set : {&pf.prefilters.paren_lines, &pf.prefilters.apostrophe_lines, &pf.prefilters.colon_comment_lines})
-    set->resize(file.line_count() + 1);
+  // NUL bytes add logical lines: insert() grows a set then.
+  for (LineSet* set : pf.prefilters.line_sets()) set->resize(file.line_count() + 1);
   const bool any_nul = file.any_nul();
   const bool any_del = file.any_del();
   // Four parts per thread, so that a thread slowed down (another process, a part with longer lines) is made up
@@ -48,8 +47,7 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
   });
   if (opts.no_prefilters) {  // every prefilter lets everything through (the contract on ParsedFile::Prefilters)
     ParsedFile::Prefilters& p = pf.prefilters;
-    for (LineSet* set : {&p.rich_lines, &p.paren_lines, &p.apostrophe_lines, &p.colon_comment_lines})
-      set->fill(pf.lines.size());
+    for (LineSet* set : p.line_sets()) set->fill(pf.lines.size());
     p.any_exponent = p.any_blank_before_colon = p.any_repeated_letter = true;
     p.any_line_number = p.any_tab_indent = true;
     p.off = true;

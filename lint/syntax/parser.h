@@ -12,6 +12,7 @@
 // line, the way RRF itself reports an error and carries on with the next line.
 #pragma once
 
+#include <array>
 #include <compare>
 #include <cstdint>
 #include <cstring>
@@ -208,6 +209,17 @@ struct ParsedFile {
     LineSet paren_lines, apostrophe_lines;
     /// The lines whose comment holds a ':': a suppression comment (`; rrflint: ...`) can stand only there.
     LineSet colon_comment_lines;
+    /// The command lines whose code may hold a value without a letter (may_hold_stray_value in
+    /// lint/syntax/byte_classes.h: a blank, then a digit, sign, '.', '{' or '"', after a byte other than a letter).
+    LineSet stray_value_lines;
+    /// The command lines whose code may hold a closing quote with two letters right after it
+    /// (may_have_word_after_quote in lint/syntax/byte_classes.h).
+    LineSet word_after_quote_lines;
+    /// Every line set above, to size, fill or clear them all.
+    std::array<LineSet*, 6> line_sets() {
+      return {&rich_lines,          &paren_lines,       &apostrophe_lines,
+              &colon_comment_lines, &stray_value_lines, &word_after_quote_lines};
+    }
     // Whether any command has the flag of that name (Command::any_exponent …): a rule skips the file when not.
     bool any_exponent = false;
     bool any_blank_before_colon = false;

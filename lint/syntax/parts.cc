@@ -130,10 +130,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     reserve_huge(out.commands.recs_, first[j + 1] - first[j] + 1);
     LineParser lp(out, p.cnc_in, p.laser_in, pf.lines.recs_.data(), first[j]);
     lp.fast_lines = opts.fast_lines;
-    lp.rich_ = &pf.prefilters.rich_lines;
-    lp.parens_ = &pf.prefilters.paren_lines;
-    lp.apostrophes_ = &pf.prefilters.apostrophe_lines;
-    lp.colon_comments_ = &pf.prefilters.colon_comment_lines;
+    lp.sets_ = &pf.prefilters;
     lp.parse_lines(first[j], first[j + 1], false, any_del);
     p.cnc_out = lp.lex_.cnc;
     p.laser_out = lp.laser_;
@@ -150,10 +147,7 @@ void LineParser::parse_in_parts(ParsedFile& pf, const ParseOptions& opts, unsign
     for (unsigned j : again) {
       ps[j].cnc_in = ps[j - 1].cnc_out;
       ps[j].laser_in = ps[j - 1].laser_out;
-      pf.prefilters.rich_lines.clear(first[j], first[j + 1]);
-      for (LineSet* set :
-           {&pf.prefilters.paren_lines, &pf.prefilters.apostrophe_lines, &pf.prefilters.colon_comment_lines})
-        set->clear(first[j], first[j + 1]);
+      for (LineSet* set : pf.prefilters.line_sets()) set->clear(first[j], first[j + 1]);
     }
     run_tasks(again.size(), std::min<unsigned>(static_cast<unsigned>(again.size()), opts.threads),
               [&](size_t k) { run(again[k]); });

@@ -4,8 +4,8 @@
 // Input layout: byte 0 picks the firmware target and board (fuzz::options_of); the rest is split at the first 0xFF
 // byte into /sys/config.g and /sys/m.g (so `M98 P"m.g"` in the first part reaches the second). Without 0xFF the
 // whole rest is config.g. Seeds: tests/fuzz/make_seeds.py. Each input is linted a second time on three threads
-// (files parsed in parts), which must report the same, and each file is parsed again without the short path for
-// simple lines, which must record the same (fuzz::check_parses, fuzz::check_threads_agree).
+// (files parsed in parts, every prefilter off), which must report the same, and each file is parsed again without the
+// short path for simple lines, which must record the same (fuzz::check_parses, fuzz::check_threads_agree).
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
