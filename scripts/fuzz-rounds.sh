@@ -8,8 +8,9 @@
 #
 # One instance per core: give each its own FUZZ_BUILD_DIR (e.g. build-fuzz, build-fuzz2). A lock per target
 # (flock on $FUZZ_LOCKS/TARGET, default /tmp/rrflint-fuzz-locks) keeps two instances off the same target. The targets
-# are built once, from the tree as it is at the start (its commit goes in every row); edits made while the rounds
-# run are not built half-done. To stop after the current round: touch "$FUZZ_BUILD_DIR/fuzz-work/STOP".
+# are built once, from the last commit (FUZZ_SNAPSHOT=1 of scripts/fuzz.sh: a copy of it beside the build folder, so
+# that files edited while the build runs are not compiled in; its commit goes in every row). To stop after the
+# current round: touch "$FUZZ_BUILD_DIR/fuzz-work/STOP".
 #
 # Environment: FUZZ_ROUND (seconds per round, default 1800), FUZZ_GOAL (default 10000000), and those of
 # scripts/fuzz.sh; FUZZ_TIMEOUT defaults to 120 s here (a fuzzer starved by other jobs on the machine is slow, not
@@ -36,7 +37,7 @@ total() {
 }
 
 # Build once, then run what was built (each row names the commit its target was built from).
-FUZZ_BUILD_ONLY=1 scripts/fuzz.sh 1 "${candidates[@]}" || { echo "fuzz-rounds: the targets did not build" >&2; exit 2; }
+FUZZ_SNAPSHOT=${FUZZ_SNAPSHOT:-1} FUZZ_BUILD_ONLY=1 scripts/fuzz.sh 1 "${candidates[@]}" || { echo "fuzz-rounds: the targets did not build" >&2; exit 2; }
 export FUZZ_NO_BUILD=1
 
 end=$(($(date +%s) + $(awk -v h="$hours" 'BEGIN { printf "%d", h * 3600 }')))

@@ -16,7 +16,8 @@
 # spend its time on the seeds alone), FUZZ_TIMEOUT (seconds per input, default 10), FUZZ_RSS_MB (default 2048),
 # FUZZ_NO_BUILD=1 (run the targets already built, as scripts/fuzz-rounds.sh does after building them once, so that
 # edits made meanwhile are not built half-done; the rows name the commit each was built from, kept beside it as
-# fuzz_TARGET.commit), FUZZ_BUILD_ONLY=1 (build the targets and stop).
+# fuzz_TARGET.commit), FUZZ_BUILD_ONLY=1 (build the targets and stop), FUZZ_SNAPSHOT=1 (build from the committed tree,
+# copied to FUZZ_BUILD_DIR-src, not from the working tree: scripts/fuzz-rounds.sh sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -48,18 +49,40 @@ cxx=$(command -v clang++-14 || command -v clang++ || true)
 [[ -n "$cxx" ]] || { echo "fuzz: clang++-14 is needed (scripts/setup.sh --test installs it)" >&2; exit 2; }
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-generator=()
-command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
-[[ -f "$build/CMakeCache.txt" ]] && generator=()
 # The commit the targets are built from (`+`: with uncommitted changes, RESULTS.md aside).
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo "-")
 git diff --quiet HEAD -- . ":(exclude)$results" 2>/dev/null || commit="$commit+"
+src=.
+if [[ "${FUZZ_SNAPSHOT:-}" == 1 && "${FUZZ_NO_BUILD:-}" != 1 ]]; then
+  # Built from the committed tree, copied beside the build folder: files edited while the build runs are not
+  # compiled in half-done, and the rows name exactly what was built. Only files whose content changed are copied
+  # (and get a new time), so the next build recompiles only what the commits changed.
+  src="$build-src"
+  commit=$(git rev-parse --short HEAD)
+  fresh=$(mktemp -d)
+  git archive HEAD | tar -x -C "$fresh"
+  mkdir -p "$src"
+  (cd "$fresh" && find . -type f) | while IFS= read -r f; do
+    cmp -s "$fresh/$f" "$src/$f" || { mkdir -p "$(dirname "$src/$f")" && cp "$fresh/$f" "$src/$f"; }
+  done
+  (cd "$src" && find . -type f) | while IFS= read -r f; do [[ -e "$fresh/$f" ]] || rm -f "$src/$f"; done
+  rm -rf "$fresh"
+  src=$(cd "$src" && pwd)
+fi
+# A build folder configured from another source folder is configured afresh.
+if [[ -f "$build/CMakeCache.txt" ]] &&
+  ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$(cd "$src" && pwd)" "$build/CMakeCache.txt"; then
+  rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
+fi
+generator=()
+command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
+[[ -f "$build/CMakeCache.txt" ]] && generator=()
 if [[ "${FUZZ_NO_BUILD:-}" == 1 ]]; then
   for t in "${targets[@]}"; do
     [[ -x "$build/fuzz_$t" ]] || { echo "fuzz: FUZZ_NO_BUILD=1 but $build/fuzz_$t is not built" >&2; exit 2; }
   done
 else
-  cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  cmake -S "$src" -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
   cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
   for t in "${targets[@]}"; do echo "$commit" >"$build/fuzz_$t.commit"; done
