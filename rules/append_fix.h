@@ -16,9 +16,7 @@ namespace rrflint::tools {
 /// expression open in it (`X{a Z1 ; note }`, RRF113)? A fix that copies the text of such a command would copy the
 /// broken text: a new syntax error (found by fuzzing).
 inline bool parses_whole(const ParsedFile& pf, const Command& c) {
-  auto inside = [&](const Span& e) { return c.span.begin <= e.begin && e.begin < c.span.end; };
-  return std::none_of(pf.errors.begin(), pf.errors.end(), [&](const ParseError& e) { return inside(e.span); }) &&
-         std::none_of(pf.semicolon_cuts.begin(), pf.semicolon_cuts.end(), inside);
+  return !pf.any_error_from(c.span.begin, c.span.end) && !pf.any_cut_from(c.span.begin, c.span.end);
 }
 
 /// Would the command read parameter `letter` with the value `value` if " <letter><value>" were appended to it? The
@@ -29,24 +27,19 @@ inline bool parses_whole(const ParsedFile& pf, const Command& c) {
 /// expression open (`X{a ; note`), or fell into a CNC-mode '(' comment no ')' closes (`G10 P0 X1 (left tool`).
 /// A line longer than kMaxReparsedLine gets no such fix.
 inline bool append_reads(const ParsedFile& pf, const Command& c, char letter, std::string_view value) {
-  const Span ls = pf.lines.span(c.line);
-  if (c.span.begin < ls.begin || c.span.end > ls.end || ls.end - ls.begin > kMaxReparsedLine) return false;
-  const std::string_view before = pf.source->slice(ls);
-  const uint32_t at = c.span.end - ls.begin;
-  std::string after(before.substr(0, at));
-  after += ' ';
-  after += letter;
-  after += value;
-  after += before.substr(at);
-  const SourceFile was(0, "line.g", "/sys/line.g", TextBuffer(std::string(before)));
-  const SourceFile now(0, "line.g", "/sys/line.g", TextBuffer(std::move(after)));
-  const ParsedFile p0 = parse(was, ParseOptions{.cnc_mode = c.cnc});
-  const ParsedFile p1 = parse(now, ParseOptions{.cnc_mode = c.cnc});
+  const Span at{c.span.end, c.span.end};
+  if (c.span.begin < pf.lines.span(c.line).begin) return false;
+  std::string appended(" ");
+  appended += letter;
+  appended += value;
+  const EditedLine e(pf, c.line, at, appended, c.cnc);
+  if (!e.ok()) return false;
+  const ParsedFile &p0 = e.before(), &p1 = e.after();
   if (p1.errors.size() > p0.errors.size() || p1.semicolon_cuts.size() > p0.semicolon_cuts.size()) return false;
   for (const Command& d : p1.commands) {
-    if (d.span.begin != c.span.begin - ls.begin) continue;
+    if (d.span.begin != c.span.begin - e.line_begin()) continue;
     const ParamRef p = p1.find(d, letter);
-    return p && p->span.begin == at + 1 && p1.text(p->value) == value;
+    return p && p->span.begin == at.begin - e.line_begin() + 1 && p1.text(p->value) == value;
   }
   return false;
 }

@@ -67,12 +67,9 @@ void check(const FileContext& cx, Sink& out) {
         r.fix(Fix::safe("remove the line number", Edit::remove(cx.at(Span{n, line.code.begin}))));
       continue;
     }
-    // The checksum follows the code after blanks: find the '*' RRF stopped at.
-    uint32_t star = line.code.end;
-    while (star < line.span.end && t[star] != '*') ++star;
-    if (star >= line.span.end) continue;
-    uint32_t se = star + 1;
-    while (se < line.span.end && lex::is_digit(t[se])) ++se;
+    const Span cs = checksum_span(t, line);  // the '*' RRF stopped at, and its digits
+    if (cs.empty()) continue;
+    const uint32_t star = cs.begin, se = cs.end;
     const std::string_view sum = t.substr(star, se - star);
     const size_t digits = sum.size() - 1;
     std::string verdict;

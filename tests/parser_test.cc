@@ -257,6 +257,25 @@ TEST_CASE("parser: comments", "[parser]") {
   CHECK(text_of(meta, meta.pf.semicolon_cuts[0]) == "{\"a\" ^ \"b\"");
 }
 
+TEST_CASE("parser: any_error_from and any_cut_from find what starts in a range", "[parser]") {
+  // Errors and cuts on lines 2 and 4, in a file parsed in parts as well as whole (the starts are sorted at the end).
+  const std::string text = "G1 X1\nM291 P\"open\nG1 Y2\nG1 X{1 ; c}\nG1 Z3\n";
+  for (unsigned threads : {1u, 3u}) {
+    Parsed p = parse_text(text, ParseOptions{.threads = threads, .part_bytes = threads > 1 ? 4u : 0u});
+    REQUIRE(p.pf.errors.size() == 1);
+    REQUIRE(p.pf.semicolon_cuts.size() == 1);
+    const uint32_t e = p.pf.errors[0].span.begin, c = p.pf.semicolon_cuts[0].begin;
+    CHECK(p.pf.any_error_from(e, e + 1));
+    CHECK(p.pf.any_error_from(0, e + 1));
+    CHECK_FALSE(p.pf.any_error_from(0, e));      // the end is not in the range
+    CHECK_FALSE(p.pf.any_error_from(e + 1, c));  // nor before the begin
+    CHECK_FALSE(p.pf.any_error_from(c, c + 1));  // a cut is not an error
+    CHECK(p.pf.any_cut_from(c, static_cast<uint32_t>(text.size())));
+    CHECK_FALSE(p.pf.any_cut_from(c + 1, static_cast<uint32_t>(text.size())));
+    CHECK_FALSE(p.pf.any_cut_from(0, c));
+  }
+}
+
 TEST_CASE("parser: ( ) comments only in CNC mode, after M453", "[parser]") {
   // In FFF mode the text is part of the command: "(" stays in X's value and "slow)" starts an S parameter.
   CHECK(one("G1 X5 (slow) Y6") == "cmd: G1 X=5 ( S L O W=<)> Y=6");

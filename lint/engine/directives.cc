@@ -281,10 +281,8 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
     const Span ls = f.line_span(line0);
     // A line with a parse error (an unterminated string or `{`) may swallow an appended `;`: put the directive
     // on a line of its own above it instead, with the same indentation (so it stays inside its block).
-    // (`ln`: clang 14 cannot capture a structured binding.)
-    const bool broken = std::any_of(pf.errors.begin(), pf.errors.end(), [&, ln = line0](const ParseError& e) {
-      return e.span.begin < f.size() && f.line_of(e.span.begin) == ln;
-    });
+    const uint32_t next_line = line0 + 1 < f.line_count() ? f.line_span(line0 + 1).begin : f.size();
+    const bool broken = pf.any_error_from(ls.begin, next_line);
     if (broken) {
       uint32_t ind = ls.begin;
       while (ind < ls.end && blank(text[ind])) ++ind;

@@ -174,12 +174,7 @@ void drop_fixes_on_checksummed_lines(MachineResult& res, const Machine& m) {
     const std::string_view t = u.source->text();
     std::vector<Span> spans;
     for (const Line& line : u.parsed.lines) {
-      if (!line.checksum) continue;
-      uint32_t e = line.code.end;
-      while (e < line.span.end && t[e] != '*') ++e;
-      if (e < line.span.end) ++e;
-      while (e < line.span.end && t[e] >= '0' && t[e] <= '9') ++e;
-      spans.push_back(Span{line.span.begin, e});
+      if (line.checksum) spans.push_back(Span{line.span.begin, checksum_span(t, line).end});
     }
     if (!spans.empty()) summed.emplace(u.source->id(), std::move(spans));
   }

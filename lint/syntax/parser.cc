@@ -1,5 +1,6 @@
 // parse(): one file, on one thread or in parts, then blocks and the code index.
 
+#include <algorithm>
 #include <atomic>
 
 #include "lint/base/huge_pages.h"
@@ -45,6 +46,10 @@ ParsedFile parse(const SourceFile& file, const ParseOptions& opts) {
     const trace::Scope time(!traced ? nullptr : k == 0 ? "blocks" : "code index");
     k == 0 ? compute_blocks(pf) : index_codes(pf);
   });
+  for (const ParseError& e : pf.errors) pf.error_starts_.push_back(e.span.begin);
+  for (const Span& s : pf.semicolon_cuts) pf.cut_starts_.push_back(s.begin);
+  std::sort(pf.error_starts_.begin(), pf.error_starts_.end());
+  std::sort(pf.cut_starts_.begin(), pf.cut_starts_.end());
   if (opts.no_prefilters) {  // every prefilter lets everything through (the contract on ParsedFile::Prefilters)
     ParsedFile::Prefilters& p = pf.prefilters;
     for (LineSet* set : p.line_sets()) set->fill(pf.lines.size());

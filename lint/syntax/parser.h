@@ -12,6 +12,7 @@
 // line, the way RRF itself reports an error and carries on with the next line.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <compare>
 #include <cstdint>
@@ -115,6 +116,18 @@ struct Line {
   bool in_loop = false;      // inside a while block
   bool after_nul = false;    // this logical line starts after a NUL byte on the same editor line
 };
+
+/// The checksum of a line with one (Line::checksum): the '*' the parse stopped at (after the code and blanks) and
+/// the digits after it, in the file's text `t`. Empty, at the line's end, when the line has none.
+inline Span checksum_span(std::string_view t, const Line& line) {
+  if (!line.checksum) return Span{line.span.end, line.span.end};
+  uint32_t star = line.code.end;
+  while (star < line.span.end && t[star] != '*') ++star;
+  if (star >= line.span.end) return Span{line.span.end, line.span.end};
+  uint32_t e = star + 1;
+  while (e < line.span.end && t[e] >= '0' && t[e] <= '9') ++e;
+  return Span{star, e};
+}
 
 struct ParseError {
   Span span;
@@ -259,6 +272,10 @@ struct ParsedFile {
   ParamRange params(const Command& c) const { return ParamRange(source->text(), c); }
   /// The first parameter with this letter (RRF's Seen() finds the first one).
   ParamRef find(const Command& c, char letter) const;
+  /// Does a parse error (`errors`), or a ';' cut (`semicolon_cuts`), start in [b, e)? A binary search: a rule asks
+  /// this once per finding, and a large file may have thousands of errors.
+  bool any_error_from(uint32_t b, uint32_t e) const { return any_from(error_starts_, b, e); }
+  bool any_cut_from(uint32_t b, uint32_t e) const { return any_from(cut_starts_, b, e); }
   Line line_of(const Command& c) const { return lines[c.line]; }
 
  private:
@@ -274,6 +291,12 @@ struct ParsedFile {
   std::vector<uint16_t> code_keys_;
   std::vector<uint32_t> code_start_;
   std::vector<uint16_t> fraction_keys_;  // the keys with a fractional command, in order
+  // The starts of `errors` and of `semicolon_cuts`, sorted (filled at the end of parse()).
+  std::vector<uint32_t> error_starts_, cut_starts_;
+  static bool any_from(const std::vector<uint32_t>& starts, uint32_t b, uint32_t e) {
+    const auto it = std::lower_bound(starts.begin(), starts.end(), b);
+    return it != starts.end() && *it < e;
+  }
 };
 
 ParsedFile parse(const SourceFile& file, const ParseOptions& opts = {});
