@@ -127,10 +127,10 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
-  // A line's code holds its commands, so a line the parse left out of the set (ParsedFile::Prefilters) has no
-  // command that may_hold_stray_value passes: most lines are skipped without reading them.
+  // A line's code holds its commands, so a line the parse left out of the set (ParsedFile::Prefilters) or that
+  // may_hold_stray_value clears has no command it would pass: most lines are skipped without decoding them.
   for (const uint32_t li : pf.prefilters.stray_value_lines) {
-    if (pf.lines.kind(li) != LineKind::Commands) continue;
+    if (pf.lines.kind(li) != LineKind::Commands || !may_hold_stray_value(t, pf.lines.code(li))) continue;
     const Line line = pf.lines[li];
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command c = pf.commands[i];

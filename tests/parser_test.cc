@@ -21,6 +21,7 @@
 #include <catch2/catch.hpp>
 
 #include "lint/base/strings.h"
+#include "lint/syntax/byte_classes.h"
 #include "lint/syntax/parser.h"
 #include "tests/param_check.h"
 
@@ -658,6 +659,24 @@ TEST_CASE("parser: the short path for simple lines records what the full lexer r
                    ParseOptions{.fast_lines = fast});
     const LineSet& colons = c.pf.prefilters.colon_comment_lines;
     CHECK(std::vector<uint32_t>(colons.begin(), colons.end()) == std::vector<uint32_t>{0, 1, 3, 4, 6});
+    // A value after a blank that follows no letter (RRF120): the short path tests its masks, the full path keeps
+    // every command line for the rule to test; a blank after a letter or inside an expression is no such blank.
+    // (The short path needs 64 bytes of the file after a line's start: a long comment ends the file.)
+    Parsed v = parse_text("G1 X10 20\nG1 X10 Y20\nG1 X 10\nG1 X{1 + 2}\nG1 X{1} 5\necho 1 2\n; " + std::string(70, '-'),
+                          ParseOptions{.fast_lines = fast});
+    const LineSet& strays = v.pf.prefilters.stray_value_lines;
+    CHECK(strays.contains(0));
+    CHECK(strays.contains(4));
+    CHECK_FALSE(strays.contains(5));  // a meta command
+    if (fast) CHECK_FALSE(strays.contains(1));
+    if (fast) CHECK_FALSE(strays.contains(2));
+    for (uint32_t li = 0; li < 5; ++li)
+      CHECK(may_hold_stray_value(v.source->text(), v.pf.lines.code(li)) == (li == 0 || li == 4));
+    // A closing quote with two letters after it (RRF117); "" inside a string closes and opens again.
+    Parsed q = parse_text("M291 P\"a\"bc\nM291 P\"abc\" S1\nM291 P\"a \"\"b\"\" c\"def\nG1 X1\nM291 P\"a\"b\n",
+                          ParseOptions{.fast_lines = fast});
+    const LineSet& words = q.pf.prefilters.word_after_quote_lines;
+    CHECK(std::vector<uint32_t>(words.begin(), words.end()) == std::vector<uint32_t>{0, 2});
   }
   // And every fixture.
   size_t files = 0;

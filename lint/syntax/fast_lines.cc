@@ -19,7 +19,7 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   while (lead < len && s[b + lead] == ' ') ++lead;
   if (lead == len || (s[b + lead] != 'G' && s[b + lead] != 'M' && s[b + lead] != 'T')) return false;
   // The masks of the line's bytes, 16 at a time (bit i: byte b + i).
-  uint64_t letter = 0, digit = 0, blank = 0, e_m = 0, semi = 0, colon = 0, allowed = 0, sign = 0;
+  uint64_t letter = 0, digit = 0, blank = 0, e_m = 0, semi = 0, colon = 0, allowed = 0;
   const auto chunk = [&](unsigned k) RRFLINT_ALWAYS_INLINE {
     const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + b + 16 * k));
     const __m128i l = letters(v);
@@ -35,7 +35,6 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
     allowed |= mask(ok);
     e_m |= mask(_mm_cmpeq_epi8(_mm_or_si128(v, _mm_set1_epi8(0x20)), _mm_set1_epi8('e')));
     semi |= mask(_mm_cmpeq_epi8(v, _mm_set1_epi8(';')));
-    sign |= mask(_mm_or_si128(any_of(v, '.', '-'), _mm_cmpeq_epi8(v, _mm_set1_epi8('+'))));
   };
   chunk(0);
   if (len > 16) chunk(1);
@@ -130,7 +129,9 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   if (colon & in_line & ~code) sets_->colon_comment_lines.insert(next_line_);  // a ':' in the comment
   // A value's first character after a blank that follows a byte other than a letter (may_hold_stray_value, which
   // walks back over a run of blanks: this takes any blank before the letter-less byte, a superset).
-  if ((digit | sign) & code & (blank << 1) & ~(letter << 2)) sets_->stray_value_lines.insert(next_line_);
+  // In the code every byte is allowed, so '.', '-' and '+' are the allowed bytes of no other class.
+  const uint64_t value_start = (allowed & ~(letter | blank | colon)) & code;  // digits, '.', '-', '+'
+  if (value_start & (blank << 1) & ~(letter << 2)) sets_->stray_value_lines.insert(next_line_);
   detail::LineRec& r = next_line_rec();
   r.code_begin = b + lead;
   r.code_end = b + ce;

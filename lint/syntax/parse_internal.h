@@ -199,8 +199,9 @@ class LineParser {
       if (line.kind == LineKind::Commands && may_have_word_after_quote(lex_.t, line.code))
         sets_->word_after_quote_lines.insert(next_line_);
     }
-    if (line.kind == LineKind::Commands && may_hold_stray_value(lex_.t, line.code))
-      sets_->stray_value_lines.insert(next_line_);
+    // Every command line of the full path: its test (may_hold_stray_value) is left to the rule, on the helper
+    // thread, where the parse is on the critical path of both.
+    if (line.kind == LineKind::Commands) sets_->stray_value_lines.insert(next_line_);
     if (span_has(lex_.t, line.comment, ':')) sets_->colon_comment_lines.insert(next_line_);
     detail::LineRec* r;
     if (in_place_) {

@@ -222,8 +222,9 @@ struct ParsedFile {
     LineSet paren_lines, apostrophe_lines;
     /// The lines whose comment holds a ':': a suppression comment (`; rrflint: ...`) can stand only there.
     LineSet colon_comment_lines;
-    /// The command lines whose code may hold a value without a letter (may_hold_stray_value in
-    /// lint/syntax/byte_classes.h: a blank, then a digit, sign, '.', '{' or '"', after a byte other than a letter).
+    /// The command lines whose code may hold a value without a letter: the lines of the short path whose byte
+    /// masks show a blank, then a digit, sign or '.', after a byte other than a letter, and every other command
+    /// line (the rule tests those with may_hold_stray_value, lint/syntax/byte_classes.h).
     LineSet stray_value_lines;
     /// The command lines whose code may hold a closing quote with two letters right after it
     /// (may_have_word_after_quote in lint/syntax/byte_classes.h).
