@@ -126,10 +126,12 @@ inline bool may_hold_stray_value(std::string_view t, Span s) {
     while (j > s.begin + 1 && blank(t[j - 1])) --j;
     return !blank(t[j - 1]) && !alpha(t[j - 1]);
   };
-  // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) could throw the
-  // quote count off, so code with an apostrophe passes as it is.
+  // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) or a quote in a
+  // CNC-mode comment (`( "… )`) could throw the quote count off, so code with an apostrophe or a '(' passes as it
+  // is.
   const auto outside = [&] {
-    if (std::string_view(t.data() + s.begin, s.end - s.begin).find('\'') != std::string_view::npos) return true;
+    if (std::string_view(t.data() + s.begin, s.end - s.begin).find_first_of("'(") != std::string_view::npos)
+      return true;
     bool quoted = false;
     uint32_t depth = 0;
     for (uint32_t k = s.begin; k + 1 < s.end; ++k) {
@@ -163,13 +165,13 @@ inline bool may_hold_stray_value(std::string_view t, Span s) {
 }
 
 // Could the code [s.begin, s.end) hold a closing quote with two letters right after it (RRF117's `S"abc"def`)?
-// Quotes pair up from the start ("" inside a string closes and opens again). A character literal ('"', 3.5+) could
-// throw the pairing off, so code with an apostrophe and a quote passes as it is
-// (ParsedFile::Prefilters::word_after_quote_lines).
+// Quotes pair up from the start ("" inside a string closes and opens again). A character literal ('"', 3.5+) or a
+// quote in a CNC-mode comment (`( "… )`) could throw the pairing off, so code with a quote and an apostrophe or a
+// '(' passes as it is (ParsedFile::Prefilters::word_after_quote_lines).
 inline bool may_have_word_after_quote(std::string_view t, Span s) {
   const std::string_view code(t.data() + s.begin, s.end - s.begin);
   if (code.find('"') == std::string_view::npos) return false;
-  if (code.find('\'') != std::string_view::npos) return true;
+  if (code.find_first_of("'(") != std::string_view::npos) return true;
   const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
   for (size_t open = code.find('"'); open != std::string_view::npos; open = code.find('"', open)) {
     const size_t close = code.find('"', open + 1);
