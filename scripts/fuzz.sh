@@ -69,8 +69,8 @@ if [[ "${FUZZ_SNAPSHOT:-}" == 1 && "${FUZZ_NO_BUILD:-}" != 1 ]]; then
   rm -rf "$fresh"
   src=$(cd "$src" && pwd)
 fi
-# A build folder configured from another source folder is configured afresh.
-if [[ -f "$build/CMakeCache.txt" ]] &&
+# A build folder configured from another source folder is configured afresh (not when only running what is built).
+if [[ "${FUZZ_NO_BUILD:-}" != 1 && -f "$build/CMakeCache.txt" ]] &&
   ! grep -qx "CMAKE_HOME_DIRECTORY:INTERNAL=$(cd "$src" && pwd)" "$build/CMakeCache.txt"; then
   rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
 fi
