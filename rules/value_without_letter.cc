@@ -128,16 +128,14 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   // A line's code holds its commands, so a line the parse left out of the set (ParsedFile::Prefilters) or that
-  // may_hold_stray_value clears has no command it would pass: most lines are skipped without decoding them. With
-  // the prefilters off that test is skipped too, so that the fixtures and the fuzzers check it against the rule.
-  const bool quick = !pf.prefilters.off;
+  // may_hold_stray_value clears has no command it would pass: most lines are skipped without decoding them.
   for (const uint32_t li : pf.prefilters.stray_value_lines) {
-    if (pf.lines.kind(li) != LineKind::Commands || (quick && !may_hold_stray_value(t, pf.lines.code(li)))) continue;
+    if (pf.lines.kind(li) != LineKind::Commands || !may_hold_stray_value(t, pf.lines.code(li))) continue;
     const Line line = pf.lines[li];
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command c = pf.commands[i];
       if (!c.has_number || c.number_expr || takes_rest_of_line(c.letter, c.number)) continue;
-      if (quick && !may_hold_stray_value(t, c.span)) continue;
+      if (!may_hold_stray_value(t, c.span)) continue;
       check_command(cx, c, out);
     }
   }
