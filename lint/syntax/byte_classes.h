@@ -14,6 +14,10 @@
 
 namespace rrflint {
 
+inline bool is_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+inline bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
 // Byte classes for the hot loops: a value runs over "plain" bytes without a second look; the code-end scan
 // stops only at bytes that can end the code or change quoting.
 struct ByteClasses {
@@ -114,17 +118,15 @@ RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p
 // every command that rule reports (ParsedFile::Prefilters::stray_value_lines): with SSE2 it tests 16 blanks at a
 // time, and walks the code byte by byte only after such a blank (`X{a + 1}` has one, inside the expression).
 inline bool may_hold_stray_value(std::string_view t, Span s) {
-  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
-  const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
   const auto starts_value = [](char c) {
-    return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == '{' || c == '"';
+    return is_digit(c) || c == '-' || c == '+' || c == '.' || c == '{' || c == '"';
   };
   // Is the blank at q the end of a run of blanks that starts after such a byte (the run starts at s.begin + 1 at
   // the earliest)?
   const auto stray_after = [&](uint32_t q) {
     uint32_t j = q;
-    while (j > s.begin + 1 && blank(t[j - 1])) --j;
-    return !blank(t[j - 1]) && !alpha(t[j - 1]);
+    while (j > s.begin + 1 && is_blank(t[j - 1])) --j;
+    return !is_blank(t[j - 1]) && !is_alpha(t[j - 1]);
   };
   // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) or a quote in a
   // CNC-mode comment (`( "… )`) could throw the quote count off, so code with an apostrophe or a '(' passes as it
@@ -140,7 +142,7 @@ inline bool may_hold_stray_value(std::string_view t, Span s) {
       else if (quoted) continue;
       else if (c == '{') ++depth;
       else if (c == '}') depth -= depth > 0;
-      else if (depth == 0 && k > s.begin && blank(c) && starts_value(t[k + 1]) && stray_after(k)) return true;
+      else if (depth == 0 && k > s.begin && is_blank(c) && starts_value(t[k + 1]) && stray_after(k)) return true;
     }
     return false;
   };
@@ -160,7 +162,7 @@ inline bool may_hold_stray_value(std::string_view t, Span s) {
   }
 #endif
   for (; k + 1 < s.end; ++k)
-    if (blank(t[k]) && starts_value(t[k + 1]) && stray_after(k)) return outside();
+    if (is_blank(t[k]) && starts_value(t[k + 1]) && stray_after(k)) return outside();
   return false;
 }
 
@@ -172,11 +174,10 @@ inline bool may_have_word_after_quote(std::string_view t, Span s) {
   const std::string_view code(t.data() + s.begin, s.end - s.begin);
   if (code.find('"') == std::string_view::npos) return false;
   if (code.find_first_of("'(") != std::string_view::npos) return true;
-  const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
   for (size_t open = code.find('"'); open != std::string_view::npos; open = code.find('"', open)) {
     const size_t close = code.find('"', open + 1);
     if (close == std::string_view::npos) return false;
-    if (close + 2 < code.size() && alpha(code[close + 1]) && alpha(code[close + 2])) return true;
+    if (close + 2 < code.size() && is_alpha(code[close + 1]) && is_alpha(code[close + 2])) return true;
     open = close + 1;
   }
   return false;
