@@ -32,7 +32,9 @@ It leaves alone:
 - commands whose argument is unquoted text that runs to the end of the line (`M23`, `M28`, `M30`, `M32`, `M36`,
   `M117`, and `M98`/`M550`/`M551`): the blanks are part of the text;
 - text that is not a value (`( … )` outside CNC mode is RRF112's, a bare word is RRF103's), and commands without
-  a code number (`T 0` is a bare `T`).
+  a code number (`T 0` is a bare `T`);
+- a value glued to the command word with no blank before it (`G4-5`, `G4{5}`): RRF ignores it as well, but the
+  rule looks only at values after a blank.
 
 ## Why is this bad?
 RRF finds a parameter by its letter (`Seen()`) and reads the value right after it, up to the first character
@@ -115,6 +117,9 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
       while (!before.empty() && lex::is_blank(before.back())) before.remove_suffix(1);
     }
     if (b >= p.value.end || !starts_value(t[b]) || lex::is_raw_text(c, p)) continue;
+    // Only a value after a blank: one glued to the command word (`G4-5`, `G4{5}`) is ignored by RRF as well, but
+    // it is not this rule's (may_hold_stray_value, which every normal run goes through, looks after blanks only).
+    if (p.letter == 0 && !lex::is_blank(t[b - 1])) continue;
     const Span stray{b, p.letter != 0 ? stray_end(t, b, p.value) : p.value.end};
     const std::string_view text = pf.text(stray);
     out.report(kMeta, cx.at(stray),
@@ -128,14 +133,16 @@ void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const std::string_view t = pf.source->text();
   // A line's code holds its commands, so a line the parse left out of the set (ParsedFile::Prefilters) or that
-  // may_hold_stray_value clears has no command it would pass: most lines are skipped without decoding them.
+  // may_hold_stray_value clears has no command it would pass: most lines are skipped without decoding them. With
+  // the prefilters off that test is skipped too, so that the fixtures and the fuzzers check it against the rule.
+  const bool quick = !pf.prefilters.off;
   for (const uint32_t li : pf.prefilters.stray_value_lines) {
-    if (pf.lines.kind(li) != LineKind::Commands || !may_hold_stray_value(t, pf.lines.code(li))) continue;
+    if (pf.lines.kind(li) != LineKind::Commands || (quick && !may_hold_stray_value(t, pf.lines.code(li)))) continue;
     const Line line = pf.lines[li];
     for (uint32_t i = line.first_command; i < line.first_command + line.command_count; ++i) {
       const Command c = pf.commands[i];
       if (!c.has_number || c.number_expr || takes_rest_of_line(c.letter, c.number)) continue;
-      if (!may_hold_stray_value(t, c.span)) continue;
+      if (quick && !may_hold_stray_value(t, c.span)) continue;
       check_command(cx, c, out);
     }
   }

@@ -1,6 +1,7 @@
-; RRF120's quick test and its full check disagree here: the full check reports the '-' glued to 'g10' on the
-; M563 line, the quick test (every normal run) does not. A seed for when the quick test stands aside under
-; no_prefilters again (0122f0b, reverted in da1208e): the prefilters-off run of fuzz_lint and fuzz_card must agree.
+; A value glued to a command word ('g10-report-only' is the command G10 followed by '-'): RRF120 reports only values
+; after a blank, in its full check as in its quick test (may_hold_stray_value). The two disagreed here until the full
+; check learnt the rule's scope; the prefilters-off run of fuzz_lint and fuzz_card, which skips the quick test, keeps
+; them in step.
 M584 X0 Y1 Z2 E3:4
 M563 P0 D0
 G10 P0
