@@ -58,7 +58,7 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   if (!s.axes_known || s.unknown_baseline) return;
-  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return;
+  if (cx.g10_form() != G10Form::Tool) return;
 
   std::string letters;
   std::optional<Param> first;

@@ -57,7 +57,7 @@ void check(const NodeContext& cx, Sink& out) {
                "axes, e.g. 'G10 P0 X0 Y0 Z0'");
     return;
   }
-  if (g10_form(pf, c, &s, s.firmware) != G10Form::Retraction) return;
+  if (cx.g10_form() != G10Form::Retraction) return;
   std::string letters;
   std::vector<char> list;
   for (const Param& p : pf.params(c)) {

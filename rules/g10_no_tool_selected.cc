@@ -66,7 +66,7 @@ void check(const NodeContext& cx, Sink& out) {
   if (!m568 && !c.is('G', 10)) return;
   if (cx.param('P')) return;
   if (m568 && fw < kRrf3_3) return;  // M568 does nothing there (RRF328)
-  if (!m568 && !is_tool_form(g10_form(pf, c, &s, fw))) return;
+  if (!m568 && !is_tool_form(cx.g10_form())) return;
   if (m568 && fw < kRrf3_4) {
     out.report(kMeta, cx.at(c.span),
                fmt::format("{} has no 'P': RRF 3.3 requires the tool number in M568 and answers 'missing parameter "

@@ -73,7 +73,7 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return;
+  if (cx.g10_form() != G10Form::Tool) return;
   const ToolRef ref = addressed_tool(pf, c, s);
   if (!ref.known) return;
   const Tool* t = s.tool(ref.number);

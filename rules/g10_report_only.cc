@@ -49,7 +49,7 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   auto P = get_int(pf, c, 'P');
-  if (P.absent() || g10_form(pf, c, &cx.state, cx.state.firmware) != G10Form::Report) return;
+  if (P.absent() || cx.g10_form() != G10Form::Report) return;
   const std::string tool = P.known() ? fmt::format("tool {}", P.value) : "the tool";
   out.report(kMeta, cx.at(c.span),
              fmt::format("{} sets nothing: with no axis letter and no 'R' or 'S' it only reports {}'s offsets and "

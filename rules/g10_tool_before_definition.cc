@@ -77,7 +77,7 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const MachineState& s = cx.state;
-  if (!is_tool_form(g10_form(pf, c, &s, s.firmware))) return;
+  if (!is_tool_form(cx.g10_form())) return;
   auto P = get_int(pf, c, 'P');
   if (!P.known() || P.value < 0) return;
   const int n = static_cast<int>(P.value);

@@ -112,7 +112,7 @@ inline std::optional<MissingZ> missing_z(const NodeContext& cx) {
   const Command& c = cx.command();
   const MachineState& s = cx.state;
   if (s.running_m501) return std::nullopt;  // config-override.g: M500 writes only the probed axes, on purpose
-  if (g10_form(pf, c, &s, s.firmware) != G10Form::Tool) return std::nullopt;
+  if (cx.g10_form() != G10Form::Tool) return std::nullopt;
   const ToolRef ref = addressed_tool(pf, c, s);
   if (!ref.known || ref.number < 0) return std::nullopt;
   const Tool* t = s.tool(ref.number);

@@ -158,7 +158,7 @@ void check_workplace(const NodeContext& cx, Sink& out, const Run& run) {
 }
 
 void check_g10(const NodeContext& cx, Sink& out, const Run& run) {
-  const G10Form form = g10_form(cx.parsed(), cx.command(), &cx.state, cx.state.firmware);
+  const G10Form form = cx.g10_form();
   if (form == G10Form::Workplace) check_workplace(cx, out, run);
   if (form == G10Form::Tool) check_tool_offsets(cx, out, run);
 }

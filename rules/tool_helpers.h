@@ -353,10 +353,10 @@ inline std::optional<Fix> move_line_after(const NodeContext& cx, NodeId target, 
   return move_lines_after(cx, {}, target, std::move(title));
 }
 
-/// Is this command a G10 in tool form or an M568 that sets tool settings (3.3+)?
-inline bool sets_tool_settings(const ParsedFile& pf, const Command& c, const MachineState& s) {
-  if (c.is('G', 10)) return g10_form(pf, c, &s, s.firmware) == G10Form::Tool;
-  return c.is('M', 568) && s.firmware >= kRrf3_3;
+/// Is this node's command a G10 in tool form or an M568 that sets tool settings (3.3+)?
+inline bool sets_tool_settings(const NodeContext& cx) {
+  if (cx.is('G', 10)) return cx.g10_form() == G10Form::Tool;
+  return cx.is('M', 568) && cx.state.firmware >= kRrf3_3;
 }
 
 /// A tool that certainly exists, with certain heaters, or nullptr.
@@ -371,7 +371,7 @@ inline const Tool* temperature_tool(const NodeContext& cx) {
   if (!cx.is_command() || !cx.certain()) return nullptr;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
-  if (!sets_tool_settings(pf, c, cx.state)) return nullptr;
+  if (!sets_tool_settings(cx)) return nullptr;
   if (!pf.find(c, 'R') && !pf.find(c, 'S')) return nullptr;
   const ToolRef ref = addressed_tool(pf, c, cx.state);
   if (!ref.known || ref.number < 0) return nullptr;

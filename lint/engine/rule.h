@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lint/base/diagnostic.h"
+#include "lint/boot/commands.h"
 #include "lint/boot/graph.h"
 #include "lint/boot/infer.h"
 #include "lint/boot/model.h"
@@ -84,6 +85,13 @@ struct NodeContext {
   bool in_boot() const;
   /// The segment holding this node.
   const Segment& segment() const;
+  /// This node's G10 form (g10_form with the state before the node), decoded once for all the node rules that
+  /// ask: a G10 wakes about ten of them, and each decoding looks up several letters.
+  G10Form g10_form() const;
+
+  // The cache behind g10_form(): a NodeContext is made per node and the state does not change while its rules run.
+  mutable bool g10_form_known_ = false;
+  mutable G10Form g10_form_ = G10Form::Unknown;
 };
 
 /// What an end-of-machine rule sees.
