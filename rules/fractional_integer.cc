@@ -59,10 +59,17 @@ constexpr IntParam kIntParams[] = {
     {'M', 207, "P"},    {'M', 567, "P"},      {'M', 116, "P"},
 };
 
-// The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers.
+// The '.' of a number with a non-zero fraction ("0.5", "-1.25"), or npos. "1.0" and "2." are whole numbers. The '.'
+// must follow the number's digits: RRF's reader stops at the first byte that cannot continue them, so in
+// `0"x".5` it reads 0 and never meets the '.'.
 size_t fraction_dot(std::string_view item) {
   const size_t dot = item.find('.');
   if (dot == std::string_view::npos) return dot;
+  size_t at = 0;
+  while (at < dot && lex::is_blank(item[at])) ++at;
+  if (at < dot && (item[at] == '-' || item[at] == '+')) ++at;
+  while (at < dot && lex::is_digit(item[at])) ++at;
+  if (at != dot) return std::string_view::npos;
   for (size_t k = dot + 1; k < item.size() && lex::is_digit(item[k]); ++k)
     if (item[k] != '0') return dot;
   return std::string_view::npos;

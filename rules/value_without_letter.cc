@@ -120,6 +120,9 @@ void check_command(const FileContext& cx, const Command& c, Sink& out) {
     // Only a value after a blank: one glued to the command word (`G4-5`, `G4{5}`) is ignored by RRF as well, but
     // it is not this rule's (may_hold_stray_value, which every normal run goes through, looks after blanks only).
     if (p.letter == 0 && !lex::is_blank(t[b - 1])) continue;
+    // And not after a letter (`S"a"uses 1`: the S of `uses` takes the 1 in RRF, whatever the lexer made of the
+    // text glued to the string); an exponent's E is no letter (`H0e 3`).
+    if (!blanks_after_non_letter(t, c.span.begin, b)) continue;
     const Span stray{b, p.letter != 0 ? stray_end(t, b, p.value) : p.value.end};
     const std::string_view text = pf.text(stray);
     out.report(kMeta, cx.at(stray),

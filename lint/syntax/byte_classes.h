@@ -112,22 +112,31 @@ RRFLINT_ALWAYS_INLINE inline bool any_rich(const char* s, uint32_t n, uint32_t p
 #endif
 }
 
+// Can a value after the blanks that end at `q` (t[q - 1] is a blank) be one with no letter of its own? Not when the
+// byte before the blanks is a letter: that letter takes the value (RRF's number reader skips leading blanks, so
+// `X 10` is X10). An E or e right after a digit is an exponent, not a letter (`H0e 3`: the 3 has no letter). The
+// blanks start at `lo` + 1 at the earliest. RRF120's full check and its quick test (may_hold_stray_value) share it.
+inline bool blanks_after_non_letter(std::string_view t, uint32_t lo, uint32_t q) {
+  uint32_t j = q - 1;  // the first blank of the run
+  while (j > lo + 1 && is_blank(t[j - 1])) --j;
+  const char c = t[j - 1];
+  if (is_blank(c)) return false;
+  if (!is_alpha(c)) return true;
+  return (c == 'e' || c == 'E') && j >= lo + 2 && is_digit(t[j - 2]);
+}
+
 // Could the code [s.begin, s.end) of a command line hold a value without a letter (RRF120's `G1 X10 20`)? A blank
 // outside strings and expressions, followed by a value's first character (a digit, '-', '+', '.', '{' or '"'),
-// where the last byte before the blanks is neither a blank nor a letter (`X 10` is X's value). Cheap, and true for
-// every command that rule reports (ParsedFile::Prefilters::stray_value_lines): with SSE2 it tests 16 blanks at a
-// time, and walks the code byte by byte only after such a blank (`X{a + 1}` has one, inside the expression).
+// where the last byte before the blanks is neither a blank nor a letter (`X 10` is X's value; an exponent's E is
+// not a letter: blanks_after_non_letter). Cheap, and true for every command that rule reports
+// (ParsedFile::Prefilters::stray_value_lines): with SSE2 it tests 16 blanks at a time, and walks the code byte by
+// byte only after such a blank (`X{a + 1}` has one, inside the expression).
 inline bool may_hold_stray_value(std::string_view t, Span s) {
   const auto starts_value = [](char c) {
     return is_digit(c) || c == '-' || c == '+' || c == '.' || c == '{' || c == '"';
   };
-  // Is the blank at q the end of a run of blanks that starts after such a byte (the run starts at s.begin + 1 at
-  // the earliest)?
-  const auto stray_after = [&](uint32_t q) {
-    uint32_t j = q;
-    while (j > s.begin + 1 && is_blank(t[j - 1])) --j;
-    return !is_blank(t[j - 1]) && !is_alpha(t[j - 1]);
-  };
+  // Is the blank at q the end of a run of blanks that starts after such a byte?
+  const auto stray_after = [&](uint32_t q) { return blanks_after_non_letter(t, s.begin, q + 1); };
   // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) or a quote in a
   // CNC-mode comment (`( "… )`) could throw the quote count off, so code with an apostrophe or a '(' passes as it
   // is.

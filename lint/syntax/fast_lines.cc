@@ -128,10 +128,11 @@ bool LineParser::simple_line(uint32_t b, uint32_t e) {
   }
   if (colon & in_line & ~code) sets_->colon_comment_lines.insert(next_line_);  // a ':' in the comment
   // A value's first character after a blank that follows a byte other than a letter (may_hold_stray_value, which
-  // walks back over a run of blanks: this takes any blank before the letter-less byte, a superset).
+  // walks back over a run of blanks: this takes any blank before the letter-less byte, a superset). An exponent's
+  // E after a digit is not a letter there (`H0e 3`), so it counts as such a byte.
   // In the code every byte is allowed, so '.', '-' and '+' are the allowed bytes of no other class.
   const uint64_t value_start = (allowed & ~(letter | blank | colon)) & code;  // digits, '.', '-', '+'
-  if (value_start & (blank << 1) & ~(letter << 2)) sets_->stray_value_lines.insert(next_line_);
+  if (value_start & (blank << 1) & ~(param_letters << 2)) sets_->stray_value_lines.insert(next_line_);
   detail::LineRec& r = next_line_rec();
   r.code_begin = b + lead;
   r.code_end = b + ce;
