@@ -18,8 +18,9 @@ constexpr RuleMeta kMeta{
 ## What it does
 Reports a number, a list, a quoted string or a `{…}` expression that stands after a blank with no parameter
 letter of its own: `M92 X80 Y80 409:409` (where `E409:409` was meant), `G4 10`, `M106 P0 0.5`,
-`M106 P0 {global.fan}`. The value may follow the command word (`G4 10`) or a complete value of another letter
-(`Y80 409:409`).
+`M106 P0 {global.fan}`. The value may follow the command word (`G4 10`), a complete value of another letter
+(`Y80 409:409`), or an E or e right after a digit, which RRF reads as an exponent and not as a letter
+(`M307 H0e 3`).
 
 It leaves alone:
 - a blank between a letter and its value: `X 10` is `X10` (RRF's number reader skips leading blanks), and a
