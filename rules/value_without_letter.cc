@@ -66,11 +66,6 @@ M906 X 800 Y 800
 )md",
 };
 
-/// Can a value start with this character (a number, a string or an expression)?
-bool starts_value(char ch) {
-  return lex::is_digit(ch) || ch == '-' || ch == '+' || ch == '.' || ch == '{' || ch == '"';
-}
-
 /// Where a second value starts after a blank inside the value `v` of a lettered parameter (`80 409:409`), or
 /// v.end. A blank after ':' continues the list; a blank before ':' ends it, and what follows is RRF106's.
 uint32_t second_value(std::string_view t, Span v) {

@@ -86,11 +86,8 @@ bool parse_triggers(std::string_view on, Triggers& out, std::string* bad) {
 }
 
 G10Form NodeContext::g10_form() const {
-  if (!g10_form_known_) {
-    g10_form_ = rrflint::g10_form(parsed(), command(), &state, state.firmware);
-    g10_form_known_ = true;
-  }
-  return g10_form_;
+  if (!g10_form_) g10_form_ = rrflint::g10_form(parsed(), command(), &state, state.firmware);
+  return *g10_form_;
 }
 
 bool NodeContext::in_boot() const { return !graph.segments.empty() && segment().boot; }

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -90,8 +91,7 @@ struct NodeContext {
   G10Form g10_form() const;
 
   // The cache behind g10_form(): a NodeContext is made per node and the state does not change while its rules run.
-  mutable bool g10_form_known_ = false;
-  mutable G10Form g10_form_ = G10Form::Unknown;
+  mutable std::optional<G10Form> g10_form_;
 };
 
 /// What an end-of-machine rule sees.

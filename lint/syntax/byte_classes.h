@@ -125,6 +125,10 @@ inline bool blanks_after_non_letter(std::string_view t, uint32_t lo, uint32_t q)
   return (c == 'e' || c == 'E') && j >= lo + 2 && is_digit(t[j - 2]);
 }
 
+// Can a value start with this character (a number, a string or an expression)? RRF120's full check and its quick
+// test share it.
+inline bool starts_value(char c) { return is_digit(c) || c == '-' || c == '+' || c == '.' || c == '{' || c == '"'; }
+
 // Could the code [s.begin, s.end) of a command line hold a value without a letter (RRF120's `G1 X10 20`)? A blank
 // outside strings and expressions, followed by a value's first character (a digit, '-', '+', '.', '{' or '"'),
 // where the last byte before the blanks is neither a blank nor a letter (`X 10` is X's value; an exponent's E is
@@ -132,9 +136,6 @@ inline bool blanks_after_non_letter(std::string_view t, uint32_t lo, uint32_t q)
 // (ParsedFile::Prefilters::stray_value_lines): with SSE2 it tests 16 blanks at a time, and walks the code byte by
 // byte only after such a blank (`X{a + 1}` has one, inside the expression).
 inline bool may_hold_stray_value(std::string_view t, Span s) {
-  const auto starts_value = [](char c) {
-    return is_digit(c) || c == '-' || c == '+' || c == '.' || c == '{' || c == '"';
-  };
   // Is the blank at q the end of a run of blanks that starts after such a byte?
   const auto stray_after = [&](uint32_t q) { return blanks_after_non_letter(t, s.begin, q + 1); };
   // The same test byte by byte, outside strings and expressions. A character literal ('"', 3.5+) or a quote in a
