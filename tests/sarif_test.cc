@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "lint/engine/rule.h"
+#include "lint/render/json_writer.h"
 #include "lint/render/render.h"
 #include "rules/registry.h"
 #include "tests/cli_util.h"
@@ -406,4 +407,35 @@ TEST_CASE("json, json-lines: a fix's text keeps its line endings; invalid UTF-8 
   CHECK(sanitize("a\nb\xc3") ==
         "a\xEF\xBF\xBD"
         "b\xEF\xBF\xBD");
+}
+
+TEST_CASE("sanitize and the JSON writer: a byte that matters anywhere in a string of any length", "[json][render]") {
+  // Both skip plain text 8 bytes at a time: put the byte at every place of strings up to 3 words long.
+  const std::string fffd = "\xEF\xBF\xBD";
+  // What sanitize makes of each: a control byte (not a tab) becomes U+FFFD, so does each byte of an invalid
+  // sequence; the rest is kept.
+  enum Kind { Kept, Control, Invalid };
+  std::vector<std::pair<std::string, Kind>> cases;
+  for (const char* b : {"\x01", "\x1f", "\x7f", "\n"}) cases.emplace_back(b, Control);
+  for (const char* b : {"\t", "\"", "\\", " ", "~", "\xC3\xA9", "\xF0\x9F\x98\x80"}) cases.emplace_back(b, Kept);
+  for (const char* b : {"\xff", "\x80", "\xC3", "\xED\xA0\x80"}) cases.emplace_back(b, Invalid);
+  for (size_t len = 0; len <= 24; ++len)
+    for (size_t pos = 0; pos <= len; ++pos)
+      for (const auto& [bytes, kind] : cases) {
+        const std::string s = std::string(pos, 'a') + bytes + std::string(len - pos, 'b');
+        std::string middle = bytes;
+        if (kind == Control) middle = fffd;
+        if (kind == Invalid) middle.clear();
+        for (size_t k = 0; kind == Invalid && k < bytes.size(); ++k) middle += fffd;
+        const std::string want = std::string(pos, 'a') + middle + std::string(len - pos, 'b');
+        INFO("len " << len << ", pos " << pos << ", bytes " << json(valid_utf8(bytes)).dump());
+        REQUIRE(sanitize(s) == want);
+        REQUIRE(valid_utf8(s) == (kind == Invalid ? want : s));
+        std::string out;
+        JsonWriter(out, 2).value(sanitize(s));
+        REQUIRE(out == json(sanitize(s)).dump());
+        out.clear();
+        JsonWriter(out, 2).value(valid_utf8(s));
+        REQUIRE(out == json(valid_utf8(s)).dump());
+      }
 }

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <set>
 
 #include "lint/render/render.h"
@@ -29,12 +31,33 @@ Range range_of(const SourceManager& sm, const Location& loc) {
 
 namespace {
 
+// Do the 8 bytes at p hold printable ASCII only (0x20-0x7E)? Most of every message and path does, so they are
+// copied as they are, a word at a time. Each test below is exact for "any byte": a borrow only runs on from a
+// byte that already matched.
+bool plain_ascii8(const char* p) {
+  constexpr uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
+  uint64_t x;
+  std::memcpy(&x, p, 8);
+  const uint64_t below_space = (x - 0x20 * ones) & ~x & highs;
+  const uint64_t del = ((x ^ (0x7F * ones)) - ones) & ~(x ^ (0x7F * ones)) & highs;
+  return ((x & highs) | below_space | del) == 0;
+}
+
 std::string replace_invalid(std::string_view s, bool keep_controls) {
   std::string out;
   out.reserve(s.size());
+  size_t run = 0;  // the bytes [run, i) are copied as they are
   size_t i = 0;
   while (i < s.size()) {
-    unsigned char c = static_cast<unsigned char>(s[i]);
+    if (i + 8 <= s.size() && plain_ascii8(s.data() + i)) {
+      i += 8;
+      continue;
+    }
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x20 && c < 0x7F) {
+      ++i;
+      continue;
+    }
     size_t len = 1;
     if (c >= 0xC2 && c <= 0xDF) len = 2;
     else if (c >= 0xE0 && c <= 0xEF) len = 3;
@@ -47,18 +70,16 @@ std::string replace_invalid(std::string_view s, bool keep_controls) {
       ok = !(c == 0xE0 && c1 < 0xA0) && !(c == 0xED && c1 > 0x9F) && !(c == 0xF0 && c1 < 0x90) &&
            !(c == 0xF4 && c1 > 0x8F);
     }
-    if (!ok) {
-      out += "\xEF\xBF\xBD";
-      ++i;
+    // An invalid byte, and a control byte other than a tab unless kept, become U+FFFD, one byte at a time.
+    if (ok && !(len == 1 && c != '\t' && !keep_controls)) {
+      i += len;
       continue;
     }
-    if (len == 1 && (c < 0x20 || c == 0x7F) && c != '\t' && !keep_controls) {
-      out += "\xEF\xBF\xBD";
-    } else {
-      out.append(s.substr(i, len));
-    }
-    i += len;
+    out.append(s, run, i - run);
+    out += "\xEF\xBF\xBD";
+    run = ++i;
   }
+  out.append(s, run, s.size() - run);
   return out;
 }
 

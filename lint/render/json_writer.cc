@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <cstring>
+
 namespace rrflint {
 
 void JsonWriter::newline(size_t depth) {
@@ -69,10 +72,26 @@ void JsonWriter::null() {
   out_ += "null";
 }
 
+namespace {
+
+// Do the 8 bytes at p need no escape (no control byte, '"' or '\\')? Each test is exact for "any byte": a borrow
+// only runs on from a byte that already matched, and a byte from 0x80 up never matches.
+bool no_escape8(const char* p) {
+  constexpr uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
+  uint64_t x;
+  std::memcpy(&x, p, 8);
+  const auto zero_byte = [&](uint64_t y) { return (y - ones) & ~y & highs; };
+  return (((x - 0x20 * ones) & ~x & highs) | zero_byte(x ^ ('"' * ones)) | zero_byte(x ^ ('\\' * ones))) == 0;
+}
+
+}  // namespace
+
 void JsonWriter::string(std::string_view s) {
   out_ += '"';
   size_t run = 0;  // start of the bytes not yet copied
   for (size_t i = 0; i < s.size(); ++i) {
+    while (i + 8 <= s.size() && no_escape8(s.data() + i)) i += 8;
+    if (i == s.size()) break;
     const unsigned char c = static_cast<unsigned char>(s[i]);
     if (c >= 0x20 && c != '"' && c != '\\') continue;
     out_.append(s.substr(run, i - run));
