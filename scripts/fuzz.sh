@@ -17,7 +17,10 @@
 # FUZZ_NO_BUILD=1 (run the targets already built, as scripts/fuzz-rounds.sh does after building them once, so that
 # edits made meanwhile are not built half-done; the rows name the commit each was built from, kept beside it as
 # fuzz_TARGET.commit), FUZZ_BUILD_ONLY=1 (build the targets and stop), FUZZ_SNAPSHOT=1 (build from the committed tree,
-# copied to FUZZ_BUILD_DIR-src, not from the working tree: scripts/fuzz-rounds.sh sets it).
+# copied to FUZZ_BUILD_DIR-src, not from the working tree: scripts/fuzz-rounds.sh sets it), FUZZ_WORK (the folder of
+# the seeds, logs and artifacts, default FUZZ_BUILD_DIR/fuzz-work) and FUZZ_CORPUS (the scratch corpora, one folder
+# per target, default FUZZ_WORK/corpus): the workers of `FUZZ_JOBS=N scripts/fuzz-rounds.sh` each have their own
+# FUZZ_WORK and share one FUZZ_CORPUS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
@@ -89,7 +92,8 @@ else
 fi
 [[ "${FUZZ_BUILD_ONLY:-}" == 1 ]] && exit 0
 
-work="$build/fuzz-work"
+work=${FUZZ_WORK:-$build/fuzz-work}
+corpus=${FUZZ_CORPUS:-$work/corpus}
 rm -rf "$work/seeds"
 python3 tests/fuzz/make_seeds.py ${FUZZ_SEEDS:+--max "$FUZZ_SEEDS"} "$work/seeds"
 mkdir -p "$work/artifacts" "$work/logs"
@@ -101,14 +105,14 @@ if [[ -n "$results" && ! -f "$results" ]]; then
 fi
 failed=0
 for t in "${targets[@]}"; do
-  mkdir -p "$work/corpus/$t"
+  mkdir -p "$corpus/$t"
   log="$work/logs/$t.log"
   start=$(date +%s)
   status=0
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$build/fuzz_$t" -max_total_time="$seconds" -timeout="$timeout" -rss_limit_mb="$rss" -detect_leaks=1 \
     -max_len="${max_len[$t]}" -dict="tests/fuzz/$([[ $t == lsp ]] && echo lsp || echo rrf).dict" -print_final_stats=1 \
-    -artifact_prefix="$work/artifacts/$t-" "$work/corpus/$t" "$work/seeds/$t" >"$log" 2>&1 || status=$?
+    -artifact_prefix="$work/artifacts/$t-" "$corpus/$t" "$work/seeds/$t" >"$log" 2>&1 || status=$?
   elapsed=$(($(date +%s) - start))
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   cov=$(sed -n 's/.*[ \t]cov: \([0-9]*\).*/\1/p' "$log" | tail -1)
