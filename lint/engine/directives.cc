@@ -17,16 +17,6 @@ namespace {
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
-char ascii_lower(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; }
-
-// Case-insensitive (ASCII) equality, without the copies of to_lower (it runs on every comment).
-bool ieq(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i)
-    if (ascii_lower(a[i]) != ascii_lower(b[i])) return false;
-  return true;
-}
-
 // Which editor lines hold code (a command or meta command), from the parser's logical lines.
 std::vector<bool> code_lines(const ParsedFile& pf) {
   const SourceFile& f = *pf.source;
@@ -44,7 +34,7 @@ std::vector<bool> code_lines(const ParsedFile& pf) {
 std::optional<uint32_t> directive_start(std::string_view text, uint32_t semi, uint32_t end) {
   uint32_t p = semi + 1;
   while (p < end && blank(text[p])) ++p;
-  if (end - p < 7 || !ieq(text.substr(p, 7), "rrflint")) return std::nullopt;
+  if (end - p < 7 || !iequals(text.substr(p, 7), "rrflint")) return std::nullopt;
   p += 7;
   while (p < end && blank(text[p])) ++p;
   if (p >= end || text[p] != ':') return std::nullopt;  // `rrflint-options:` and prose are not directives
@@ -114,11 +104,11 @@ void parse_entries(std::string_view text, const RuleSet& rules, Directive& d) {
     SuppressionEntry e;
     e.span = Span{nb, q};
     e.text = std::string(text.substr(nb, q - nb));
-    if (ieq(e.text, "all")) e.all = true;
+    if (iequals(e.text, "all")) e.all = true;
     else e.rule = rules.find(e.text);
-    if (!e.rule && !e.all && e.text.size() >= 4 && to_lower(e.text).starts_with("rrf"))
+    if (!e.rule && !e.all && e.text.size() >= 4 && istarts_with(e.text, "rrf"))
       for (const Rule* r : rules.all())
-        if (to_lower(r->meta.code).starts_with(to_lower(e.text))) e.prefix = to_lower(e.text);
+        if (istarts_with(r->meta.code, e.text)) e.prefix = to_lower(e.text);
     d.entries.push_back(std::move(e));
   }
 }
@@ -169,7 +159,7 @@ std::optional<Directive> parse_comment(const ParsedFile& pf, const RuleSet& rule
 bool entry_names(const SuppressionEntry& e, std::string_view code) {
   if (e.all) return true;
   if (e.rule) return e.rule->meta.code == code;
-  return !e.prefix.empty() && to_lower(code).starts_with(e.prefix);
+  return !e.prefix.empty() && istarts_with(code, e.prefix);
 }
 
 std::string_view directive_keyword(DirectiveKind k) {
@@ -227,7 +217,7 @@ std::vector<Directive> parse_directives(const ParsedFile& pf, const RuleSet& rul
           for (auto it = open.begin(); it != open.end();) {
             SuppressionEntry& s = out[it->first].entries[it->second];
             const bool same =
-                e.all || (e.rule && s.rule == e.rule) || (!e.rule && !s.all && !s.rule && ieq(e.text, s.text));
+                e.all || (e.rule && s.rule == e.rule) || (!e.rule && !s.all && !s.rule && iequals(e.text, s.text));
             if (same) {
               s.last_line = d.line;
               e.used = true;  // an enable that closes a range does its job

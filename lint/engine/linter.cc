@@ -17,37 +17,42 @@ namespace rrflint {
 std::vector<const Rule*> enabled_rules(const RuleSet& rule_set, const LintOptions& o,
                                        std::vector<std::string>* errors) {
   const auto& all = rule_set.all();
-  std::set<const Rule*> on;
+  std::vector<char> on(all.size(), 0);  // by position in `all`
+  const auto set = [&](const Rule* r, bool insert) {
+    if (auto it = std::find(all.begin(), all.end(), r); it != all.end())
+      on[static_cast<size_t>(it - all.begin())] = insert;
+  };
   auto add = [&](const std::vector<std::string>& names, bool insert) {
     for (const std::string& n : names) {
-      if (to_lower(n) == "all") {
-        for (const Rule* r : all) insert ? (void)on.insert(r) : (void)on.erase(r);
+      if (iequals(n, "all")) {
+        std::fill(on.begin(), on.end(), insert);
         continue;
       }
       // A code prefix such as "RRF3" selects a whole family.
-      std::vector<const Rule*> hit;
-      if (const Rule* exact = rule_set.find(n)) hit.push_back(exact);
-      else if (n.size() >= 4 && to_lower(n).starts_with("rrf"))
-        for (const Rule* r : all)
-          if (to_lower(r->meta.code).starts_with(to_lower(n))) hit.push_back(r);
-      if (hit.empty()) {
-        if (errors) errors->push_back(n);
-        continue;
+      bool hit = false;
+      if (const Rule* exact = rule_set.find(n)) {
+        set(exact, insert);
+        hit = true;
+      } else if (n.size() >= 4 && istarts_with(n, "rrf")) {
+        for (size_t i = 0; i < all.size(); ++i)
+          if (istarts_with(all[i]->meta.code, n)) {
+            on[i] = insert;
+            hit = true;
+          }
       }
-      for (const Rule* r : hit) insert ? (void)on.insert(r) : (void)on.erase(r);
+      if (!hit && errors) errors->push_back(n);
     }
   };
   if (o.select.empty()) {
-    for (const Rule* r : all)
-      if (r->meta.default_enabled) on.insert(r);
+    for (size_t i = 0; i < all.size(); ++i) on[i] = all[i]->meta.default_enabled;
   } else {
     add(o.select, true);
   }
   add(o.extend_select, true);
   add(o.ignore, false);
   std::vector<const Rule*> out;
-  for (const Rule* r : all)
-    if (on.count(r)) out.push_back(r);
+  for (size_t i = 0; i < all.size(); ++i)
+    if (on[i]) out.push_back(all[i]);
   return out;
 }
 
@@ -109,6 +114,44 @@ class NodeDispatch {
   std::vector<std::vector<const Rule*>> g_, m_;
   std::vector<const Rule*> t_, every_, none_;
 };
+
+// The dispatch table for these rules, made once per thread for as long as the rules stay the same: a language
+// server or a fuzzer lints small files many times with one rule set, and parsing every rule's `on` list was a
+// tenth of such a lint. The table depends only on what the key holds (each rule, whether it has a node check, its
+// `on` list, compared by content), so a rule set made afresh at the same addresses cannot meet a stale table.
+const NodeDispatch& dispatch_for(const std::vector<const Rule*>& rules, bool every) {
+  struct Key {
+    const Rule* rule;
+    bool node;
+    std::string_view on;
+    bool operator==(const Key& o) const { return rule == o.rule && node == o.node && on == o.on; }
+  };
+  thread_local struct {
+    std::vector<Key> key;
+    std::string on_text;  // the `on` lists the key's views point into (a rule may not outlive this lint)
+    bool every = false;
+    std::optional<NodeDispatch> table;
+  } last;
+  const auto same = [&] {
+    if (!last.table || last.every != every || last.key.size() != rules.size()) return false;
+    for (size_t i = 0; i < rules.size(); ++i)
+      if (!(last.key[i] == Key{rules[i], rules[i]->check_node != nullptr, rules[i]->on})) return false;
+    return true;
+  };
+  if (!same()) {
+    last.table.emplace(rules, every);
+    last.every = every;
+    last.key.clear();
+    last.on_text.clear();
+    for (const Rule* r : rules) last.on_text.append(r->on);
+    size_t at = 0;
+    for (const Rule* r : rules) {
+      last.key.push_back(Key{r, r->check_node != nullptr, std::string_view(last.on_text).substr(at, r->on.size())});
+      at += r->on.size();
+    }
+  }
+  return *last.table;
+}
 
 }  // namespace
 
@@ -363,7 +406,7 @@ MachineResult lint_machine(SourceManager& sources, FileReader& reader, const Rul
   // comments as tasks on other threads while this one builds the graph and runs the forward pass
   // (lint/engine/schedule.cc).
   Sink sink;
-  const NodeDispatch dispatch(rules, options.dispatch_every_node);
+  const NodeDispatch& dispatch = dispatch_for(rules, options.dispatch_every_node);
   ModelRun run(m, res, options, dispatch);
   std::vector<std::vector<Directive>> directives;  // suppression comments, by unit (parallel runs only)
   const bool parallel = file_rules_in_parallel(m, options);

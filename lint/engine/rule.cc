@@ -9,9 +9,15 @@ RuleSet::RuleSet(std::vector<const Rule*> rules) : rules_(std::move(rules)) {
 }
 
 const Rule* RuleSet::find(std::string_view key) const {
-  std::string k = to_lower(key);
+  // A code in any case; a name as written in lower case (names are lower case: `G10-Missing-Z` is one).
+  const auto name_is = [&](std::string_view name) {
+    if (name.size() != key.size()) return false;
+    for (size_t i = 0; i < name.size(); ++i)
+      if (name[i] != ascii_lower(key[i])) return false;
+    return true;
+  };
   for (const Rule* r : rules_)
-    if (to_lower(r->meta.code) == k || r->meta.name == k) return r;
+    if (iequals(r->meta.code, key) || name_is(r->meta.name)) return r;
   return nullptr;
 }
 
