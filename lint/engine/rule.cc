@@ -9,7 +9,8 @@ RuleSet::RuleSet(std::vector<const Rule*> rules) : rules_(std::move(rules)) {
 }
 
 const Rule* RuleSet::find(std::string_view key) const {
-  // A code in any case; a name as written in lower case (names are lower case: `G10-Missing-Z` is one).
+  // A code in any case, and a name in any case: names are lower case, so the key is lowered to compare
+  // (`G10-Missing-Z` finds g10-missing-z).
   const auto name_is = [&](std::string_view name) {
     if (name.size() != key.size()) return false;
     for (size_t i = 0; i < name.size(); ++i)
