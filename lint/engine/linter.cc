@@ -117,8 +117,9 @@ class NodeDispatch {
 
 // The dispatch table for these rules, made once per thread for as long as the rules stay the same: a language
 // server or a fuzzer lints small files many times with one rule set, and parsing every rule's `on` list cost 7%
-// of such a lint (bench/RESULTS.md). The table depends only on what the key holds (each rule, whether it has a node check, its
-// `on` list, compared by content), so a rule set made afresh at the same addresses cannot meet a stale table.
+// of such a lint (bench/RESULTS.md). The table depends only on what the key holds (each rule, whether it has a node
+// check, its `on` list, compared by content), so a rule set made afresh at the same addresses cannot meet a stale
+// table.
 const NodeDispatch& dispatch_for(const std::vector<const Rule*>& rules, bool every) {
   struct Key {
     const Rule* rule;
