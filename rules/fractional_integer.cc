@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "lint/syntax/byte_classes.h"
 #include "lint/syntax/values.h"
 #include "rules/lex_common.h"
 
@@ -79,7 +80,7 @@ size_t fraction_dot(std::string_view item) {
 // value of the last letter before it, unless that letter is an exponent E (then the parameters decide). A command
 // whose dots are all in other values (G10 P0: P and L are the integer letters) needs no lexing.
 bool dot_may_count(std::string_view t, Span s, std::string_view letters) {
-  if (lex::may_confuse_quotes(t, s)) return true;
+  if (may_confuse_quotes(t, s)) return true;
   char last = 0;  // the last letter met, upper-cased; 0 before any
   bool may = false;
   lex::for_each_plain(t, s, [&](uint32_t k) {

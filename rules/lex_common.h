@@ -61,11 +61,4 @@ void for_each_plain(std::string_view t, Span s, F f) {
   }
 }
 
-// Could the quote count of for_each_plain go wrong in [s.begin, s.end)? A quote inside a CNC-mode comment
-// (`( x"y )`) or a character literal (`{'"'}`, 3.5+) is no string's quote, so a quick test built on
-// for_each_plain must pass such code as it is (fuzz_card found RRF103's test missing `M950 H1 (x"y) S"b"cd`).
-inline bool may_confuse_quotes(std::string_view t, Span s) {
-  return std::string_view(t.data() + s.begin, s.end - s.begin).find_first_of("('") != std::string_view::npos;
-}
-
 }  // namespace rrflint::lex

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "lint/engine/rule.h"
+#include "lint/syntax/byte_classes.h"
 #include "rules/edit_parses.h"
 #include "rules/lex_common.h"
 
@@ -153,7 +154,7 @@ bool needs_quotes(const Target& target, int number) {
 // '{' right after them. A letter not among them has a quoted value wherever it stands as a parameter, so
 // check_param would find nothing: most commands are cleared by this scan, without lexing their parameters.
 uint32_t letters_without_quote(std::string_view t, Span s) {
-  if (lex::may_confuse_quotes(t, s)) return ~0u;
+  if (may_confuse_quotes(t, s)) return ~0u;
   uint32_t out = 0;
   lex::for_each_plain(t, s, [&](uint32_t k) {
     const char ch = t[k];
