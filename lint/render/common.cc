@@ -1,9 +1,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
-#include <cstring>
 #include <set>
 
+#include "lint/base/bytes8.h"
 #include "lint/render/render.h"
 
 namespace rrflint {
@@ -32,15 +32,10 @@ Range range_of(const SourceManager& sm, const Location& loc) {
 namespace {
 
 // Do the 8 bytes at p hold printable ASCII only (0x20-0x7E)? Most of every message and path does, so they are
-// copied as they are, a word at a time. Each test below is exact for "any byte": a borrow only runs on from a
-// byte that already matched.
+// copied as they are, a word at a time.
 bool plain_ascii8(const char* p) {
-  constexpr uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
-  uint64_t x;
-  std::memcpy(&x, p, 8);
-  const uint64_t below_space = (x - 0x20 * ones) & ~x & highs;
-  const uint64_t del = ((x ^ (0x7F * ones)) - ones) & ~(x ^ (0x7F * ones)) & highs;
-  return ((x & highs) | below_space | del) == 0;
+  const uint64_t x = bytes8::load(p);
+  return !bytes8::any_high(x) && !bytes8::any_below(x, 0x20) && !bytes8::any_equal(x, 0x7F);
 }
 
 std::string replace_invalid(std::string_view s, bool keep_controls) {

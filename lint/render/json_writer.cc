@@ -4,7 +4,8 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <cstring>
+
+#include "lint/base/bytes8.h"
 
 namespace rrflint {
 
@@ -74,14 +75,10 @@ void JsonWriter::null() {
 
 namespace {
 
-// Do the 8 bytes at p need no escape (no control byte, '"' or '\\')? Each test is exact for "any byte": a borrow
-// only runs on from a byte that already matched, and a byte from 0x80 up never matches.
+// Do the 8 bytes at p need no escape (no control byte, '"' or '\\')?
 bool no_escape8(const char* p) {
-  constexpr uint64_t ones = 0x0101010101010101ull, highs = 0x8080808080808080ull;
-  uint64_t x;
-  std::memcpy(&x, p, 8);
-  const auto zero_byte = [&](uint64_t y) { return (y - ones) & ~y & highs; };
-  return (((x - 0x20 * ones) & ~x & highs) | zero_byte(x ^ ('"' * ones)) | zero_byte(x ^ ('\\' * ones))) == 0;
+  const uint64_t x = bytes8::load(p);
+  return !bytes8::any_below(x, 0x20) && !bytes8::any_equal(x, '"') && !bytes8::any_equal(x, '\\');
 }
 
 }  // namespace
