@@ -2,6 +2,8 @@
 // command wakes (the dispatch table lint_machine keeps per thread while the rules stay the same).
 #include <catch2/catch.hpp>
 
+#include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,22 @@ LintOptions selecting(std::vector<std::string> select, std::vector<std::string> 
 }
 
 }  // namespace
+
+TEST_CASE("registry: codes RRF and three digits, names lower-case kebab, both unique", "[engine][select]") {
+  // RuleSet::find and the suppression comments' "did you mean" compare a key with names as written: they rely on
+  // every name being lower case.
+  const std::regex code("RRF[0-9]{3}");
+  const std::regex name("[a-z0-9]+(-[a-z0-9]+(\\.[0-9]+)*)*");
+  std::set<std::string> codes_seen, names_seen;
+  for (const Rule* r : builtin_rules().all()) {
+    INFO(r->meta.code << " " << r->meta.name);
+    CHECK(std::regex_match(std::string(r->meta.code), code));
+    CHECK(std::regex_match(std::string(r->meta.name), name));
+    CHECK(codes_seen.emplace(r->meta.code).second);
+    CHECK(names_seen.emplace(r->meta.name).second);
+  }
+  CHECK(codes_seen.size() >= 50);
+}
 
 TEST_CASE("enabled rules: codes and names in any case, code prefixes, ALL, and what is not a rule",
           "[engine][select]") {

@@ -9,16 +9,9 @@ RuleSet::RuleSet(std::vector<const Rule*> rules) : rules_(std::move(rules)) {
 }
 
 const Rule* RuleSet::find(std::string_view key) const {
-  // A code in any case, and a name in any case: names are lower case, so the key is lowered to compare
-  // (`G10-Missing-Z` finds g10-missing-z).
-  const auto name_is = [&](std::string_view name) {
-    if (name.size() != key.size()) return false;
-    for (size_t i = 0; i < name.size(); ++i)
-      if (name[i] != ascii_lower(key[i])) return false;
-    return true;
-  };
+  // A code or a name, in any case (`G10-Missing-Z` finds g10-missing-z).
   for (const Rule* r : rules_)
-    if (iequals(r->meta.code, key) || name_is(r->meta.name)) return r;
+    if (iequals(r->meta.code, key) || iequals(r->meta.name, key)) return r;
   return nullptr;
 }
 

@@ -39,11 +39,8 @@ std::string suggestion(std::string_view written, const RuleSet& rules) {
   const Rule* best = nullptr;
   size_t best_d = SIZE_MAX;
   for (const Rule* r : rules.all()) {
-    std::string_view name = r->meta.name;
+    const std::string_view name = r->meta.name;  // lower case (the registry test holds every name to it)
     if ((name.size() > w.size() ? name.size() - w.size() : w.size() - name.size()) > limit) continue;
-    std::string lowered;  // names are lower case; a copy only for one that is not
-    if (std::any_of(name.begin(), name.end(), [](char c) { return c >= 'A' && c <= 'Z'; }))
-      name = lowered = to_lower(name);
     const size_t d = edit_distance(w, name);
     if (d < best_d) {
       best_d = d;
