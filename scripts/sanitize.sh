@@ -10,18 +10,30 @@
 # Left out, as they test nothing under the sanitizers and scripts/test.sh runs them: `scaffold`, which builds a
 # scratch copy of the sources of its own (not sanitized); `windows`, which cross-builds and runs rrflint.exe under
 # wine; `vscode`, the TypeScript extension's build and tests (npm).
-# Warnings are not errors here: GCC's warnings change with the sanitizers' instrumentation (false positives), and
-# the warnings gate is the ordinary build of scripts/test.sh.
+# Warnings are not errors here: they change with the compiler and the sanitizers' instrumentation (false
+# positives), and the warnings gate is the ordinary GCC build of scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh --test
 build=${SANITIZE_BUILD_DIR:-build-asan}
 launcher=()
 command -v ccache >/dev/null 2>&1 && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+# clang-14 (setup.sh --test installs it for the fuzz targets) at -O1 with line tables, assertions on: it builds
+# this suite in about a third of the time GCC takes at -O2 -g with the same sanitizers, which keeps CI within its
+# 40 minutes, and -O1 is what the sanitizers' authors advise. SANITIZE_CXX picks another compiler.
+cxx=${SANITIZE_CXX:-$(command -v clang++-14 || command -v clang++ || echo g++)}
+cxx=$(command -v "$cxx")
+# A build folder configured with another compiler is configured afresh.
+if [[ -f "$build/CMakeCache.txt" ]] && ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=$cxx" "$build/CMakeCache.txt"; then
+  rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
+fi
+debug=-gline-tables-only
+[[ $("$cxx" --version) == *clang* ]] || debug=-g1
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 start=$(date +%s)
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRRFLINT_WERROR=OFF -DBUILD_TESTING=ON \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" "${launcher[@]}" >/dev/null
+cmake -S . -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 $debug" -DRRFLINT_WERROR=OFF -DBUILD_TESTING=ON -DCMAKE_CXX_FLAGS="$flags" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 built=$(date +%s)
 
