@@ -10,9 +10,8 @@
 # that the scaffolded rules compile without warnings and pass their tests, not how fast they run, and it builds in
 # less than half the time of an -O2 -g build (the warnings gate for the real code is scripts/test.sh's build).
 # Skips (77) when python3 or cmake is missing. The scratch folder sits beside the source tree (under ccache's
-# base_dir, /work here) with the same source/build layout, so the copy's compiles hit ccache; its name is fixed per
-# source tree (a rerun reuses the cache for the test objects too, whose flags name the source folder). It is removed
-# on exit. RRFLINT_SCAFFOLD_KEEP=1 keeps it.
+# base_dir, /work here) under a name fixed per source tree, so a rerun's compiles hit ccache (its -O0 flags differ
+# from the main build's, whose objects it cannot reuse). It is removed on exit. RRFLINT_SCAFFOLD_KEEP=1 keeps it.
 set -euo pipefail
 src=$(cd "$1" && pwd)
 cxx=${2:-}
