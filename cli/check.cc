@@ -351,14 +351,19 @@ int nothing_linted(const Totals& t, const PlanStats& stats, bool io_error) {
   return kExitError;
 }
 
-// --diff: the diff to `os`, a summary to stderr, and the exit code.
-int report_diff(std::ostream& os, const Totals& t, bool io_error) {
+// --diff: the diff to `os`, a summary to stderr (with the unsafe fixes it leaves out, as ruff does), the exit code.
+int report_diff(std::ostream& os, const Totals& t, const CheckOptions& co, bool io_error) {
   os << t.diff;
   os.flush();
+  auto unsafe = [](const Diagnostic& d) { return d.fix && d.fix->applicability == Applicability::Unsafe; };
+  const auto hidden = co.unsafe_fixes ? 0 : std::ranges::count_if(t.diags, unsafe);
+  const std::string more = hidden ? fmt::format(" ({} unsafe fix{} hidden: add --unsafe-fixes to see {})", hidden,
+                                                hidden == 1 ? "" : "es", hidden == 1 ? "it" : "them")
+                                  : "";
   if (t.fixed_files)
-    std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}\n", t.fixed, t.fixed == 1 ? "" : "s",
-                             t.fixed_files, t.fixed_files == 1 ? "" : "s");
-  else std::cerr << "rrflint: no fixes to apply\n";
+    std::cerr << fmt::format("rrflint: would fix {} finding{} in {} file{}{}\n", t.fixed, t.fixed == 1 ? "" : "s",
+                             t.fixed_files, t.fixed_files == 1 ? "" : "s", more);
+  else std::cerr << "rrflint: no fixes to apply" << more << "\n";
   if (io_error) return kExitError;
   return t.fixed_files ? kExitFindings : kExitClean;
 }
@@ -472,7 +477,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     os = &file_out;
   }
 
-  if (co.diff) return report_diff(*os, t, io_error);
+  if (co.diff) return report_diff(*os, t, co, io_error);
 
   // The fixed stdin text owns stdout; the report then goes to stderr.
   if (t.stdout_text && co.output_file.empty()) {

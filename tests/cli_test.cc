@@ -314,11 +314,19 @@ TEST_CASE("cli: unsafe fixes only with --unsafe-fixes", "[cli][fix]") {
   t.write("p/sys/config.g", before);
   auto o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --fix");
   CHECK(t.read("p/sys/config.g") == before);
-  if (!contains(o.out, "unsafe fix")) {
-    WARN("g10-tool-before-definition offers no unsafe fix here; the rest of this test is skipped");
-    return;
-  }
+  // The rule's fix moves the G10 below the M563: unsafe (it changes the order config.g runs in).
+  REQUIRE(contains(o.out, "unsafe fix"));
   CHECK(contains(o.out, "fixable with --fix --unsafe-fixes"));
+  // --diff shows only safe fixes, and says that an unsafe one is left out rather than "nothing to fix" alone.
+  o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --diff");
+  CHECK(o.code == 0);
+  CHECK(o.out.empty());
+  CHECK(contains(o.err, "no fixes to apply (1 unsafe fix hidden: add --unsafe-fixes to see it)"));
+  o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --diff --unsafe-fixes");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "+G10 P0 X0 Y0 Z0"));
+  CHECK(contains(o.err, "would fix 1 finding in 1 file\n"));
+  CHECK(t.read("p/sys/config.g") == before);
   o = run_rrflint(t.root(), "check p --select g10-tool-before-definition --fix --unsafe-fixes");
   CHECK(t.read("p/sys/config.g") != before);
   CHECK(o.code == 0);
