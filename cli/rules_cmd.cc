@@ -84,7 +84,7 @@ int run_rule(const RuleOptions& ro, const CliOptions& cli) {
     list.push_back(r);
   } else {
     if (ro.name.empty()) error("name a rule (code or name), or pass --all");
-    else error(fmt::format("unknown rule '{}' (see `rrflint rule --all`)", ro.name));
+    else error(fmt::format("unknown rule '{}'{}", ro.name, unknown_rule_hint(ro.name)));
     return kExitError;
   }
   if (ro.format == "json") {

@@ -50,7 +50,7 @@ bool check_options(CliOptions& c, std::string& err, std::string& warn) {
     *list = split_commas(*list);
     for (const std::string& n : *list)
       if (!rule_selector_known(n)) {
-        err = fmt::format("unknown rule '{}' (see `rrflint rule --all`)", n);
+        err = fmt::format("unknown rule '{}'{}", n, unknown_rule_hint(n));
         return false;
       }
   }

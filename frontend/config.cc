@@ -48,7 +48,7 @@ struct Loader {
       if (!s) return fail(file, item.source(), fmt::format("'{}' must be an array of rule codes or names", key));
       const std::string v = s->get();
       if (!rule_selector_known(v))
-        return fail(file, item.source(), fmt::format("unknown rule '{}' in '{}' (see `rrflint rule --all`)", v, key));
+        return fail(file, item.source(), fmt::format("unknown rule '{}' in '{}'{}", v, key, unknown_rule_hint(v)));
       out.push_back(v);
     }
     return true;
@@ -148,7 +148,9 @@ struct Loader {
       if (!t) return fail(abs, v.source(), "'severity' must be a table: [severity] then RRF306 = \"error\"");
       for (auto&& [rk, rv] : *t) {
         const Rule* r = builtin_rules().find(rk.str());
-        if (!r) return fail(abs, rk.source(), fmt::format("[severity]: unknown rule '{}'", rk.str()));
+        if (!r)
+          return fail(abs, rk.source(),
+                      fmt::format("[severity]: unknown rule '{}'{}", rk.str(), unknown_rule_hint(rk.str())));
         std::string s;
         if (!string_value(abs, rv, fmt::format("severity.{}", rk.str()), s)) return false;
         auto sev = parse_severity(s);
@@ -334,6 +336,11 @@ bool rule_selector_known(std::string_view v) {
   for (const Rule* r : builtin_rules().all())
     if (to_lower(r->meta.code).starts_with(to_lower(v))) return true;
   return false;
+}
+
+std::string unknown_rule_hint(std::string_view v) {
+  const Rule* r = builtin_rules().near_miss(v);
+  return r ? fmt::format("; did you mean '{}' ({})?", r->meta.name, r->meta.code) : " (see `rrflint rule --all`)";
 }
 
 std::vector<std::string> selector_codes(const std::vector<std::string>& selectors) {

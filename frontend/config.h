@@ -101,6 +101,9 @@ std::optional<std::string> parse_docs_url(std::string_view url, std::string* why
 
 /// Is this a rule selector rrflint knows: a code, a name, a code prefix ("RRF3") or "ALL"?
 bool rule_selector_known(std::string_view selector);
+/// What follows "unknown rule 'x'" in an error: "; did you mean 'g10-missing-z' (RRF302)?" for a misspelt name,
+/// else " (see `rrflint rule --all`)".
+std::string unknown_rule_hint(std::string_view selector);
 /// The codes a list of selectors names.
 std::vector<std::string> selector_codes(const std::vector<std::string>& selectors);
 

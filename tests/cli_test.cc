@@ -234,7 +234,14 @@ TEST_CASE("cli: exit codes and --exit-zero, --fail-on", "[cli]") {
   CHECK(run_rrflint(t.root(), "check i").code == 0);
   CHECK(run_rrflint(t.root(), "check i --fail-on info").code == 1);
   CHECK(run_rrflint(t.root(), "check missing-folder").code == 2);
-  CHECK(run_rrflint(t.root(), "check p --select no-such-rule").code == 2);
+  auto bad = run_rrflint(t.root(), "check p --select no-such-rule");
+  CHECK(bad.code == 2);
+  CHECK(contains(bad.err, "unknown rule 'no-such-rule' (see `rrflint rule --all`)"));
+  // A misspelt name gets the nearest one (on the command line, in rrflint rule and in a config file).
+  bad = run_rrflint(t.root(), "check p --ignore g10-tool-befor-definition");
+  CHECK(bad.code == 2);
+  CHECK(contains(bad.err,
+                 "unknown rule 'g10-tool-befor-definition'; did you mean 'g10-tool-before-definition' (RRF301)?"));
   CHECK(run_rrflint(t.root(), "check p --format yaml").code == 2);
   // A rule list before the paths takes one value (comma-separated), so the path stays a path.
   auto o = run_rrflint(t.root(), "check --select RRF101,RRF900 --ignore RRF900 p --format concise");
@@ -492,6 +499,9 @@ TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url 
     CHECK(std::set<std::string>{"none", "sometimes", "always"}.count(r["fix"]));
   }
   CHECK(run_rrflint(t.root(), "rule no-such-rule").code == 2);
+  const auto miss = run_rrflint(t.root(), "rule unknown-comand");
+  CHECK(miss.code == 2);
+  CHECK(contains(miss.err, "unknown rule 'unknown-comand'; did you mean 'unknown-command' (RRF101)?"));
 }
 
 TEST_CASE("docs: docs/rules and the README rule list are up to date with the rule registry", "[docs]") {

@@ -95,7 +95,12 @@ TEST_CASE("config: errors name the file, line and column", "[config]") {
   CHECK(contains(e.message, "[machine]: unknown key 'toolchanger'"));
   e = error_of("ignore = [\"RRF101\", \"no-such-rule\"]\n");
   CHECK(e.line == 1);
-  CHECK(contains(e.message, "unknown rule 'no-such-rule'"));
+  CHECK(contains(e.message, "unknown rule 'no-such-rule' in 'ignore' (see `rrflint rule --all`)"));
+  e = error_of("extend-select = [\"unknown-comand\"]\n");
+  CHECK(contains(e.message,
+                 "unknown rule 'unknown-comand' in 'extend-select'; did you mean 'unknown-command' (RRF101)?"));
+  e = error_of("[severity]\nunknown-comand = \"error\"\n");
+  CHECK(contains(e.message, "[severity]: unknown rule 'unknown-comand'; did you mean 'unknown-command' (RRF101)?"));
   e = error_of("firmware = 3.10\n");
   CHECK(contains(e.message, "must be a string"));
   e = error_of("[severity]\nRRF306 = \"fatal\"\n");

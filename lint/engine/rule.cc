@@ -1,6 +1,12 @@
 #include "lint/engine/rule.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "lint/base/strings.h"
 
 namespace rrflint {
 
@@ -13,6 +19,42 @@ const Rule* RuleSet::find(std::string_view key) const {
   for (const Rule* r : rules_)
     if (iequals(r->meta.code, key) || iequals(r->meta.name, key)) return r;
   return nullptr;
+}
+
+namespace {
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+}  // namespace
+
+const Rule* RuleSet::near_miss(std::string_view written) const {
+  const std::string w = to_lower(written);
+  if (w.size() >= 4 && w.starts_with("rrf") && std::isdigit(static_cast<unsigned char>(w[3]))) return nullptr;
+  // A name farther than this is no near miss. Names whose lengths differ by more cannot be within it, and are not
+  // compared: a long word (a 50,000-byte "rule name") then costs nothing instead of its length times every name's.
+  const size_t limit = std::max<size_t>(2, w.size() / 4);
+  const Rule* best = nullptr;
+  size_t best_d = SIZE_MAX;
+  for (const Rule* r : rules_) {
+    const std::string_view name = r->meta.name;  // lower case (the registry test holds every name to it)
+    if ((name.size() > w.size() ? name.size() - w.size() : w.size() - name.size()) > limit) continue;
+    const size_t d = edit_distance(w, name);
+    if (d < best_d) {
+      best_d = d;
+      best = r;
+    }
+  }
+  return best_d <= limit ? best : nullptr;
 }
 
 Report& Report::note(Location loc, std::string message) {

@@ -198,6 +198,9 @@ class RuleSet {
   const std::vector<const Rule*>& all() const { return rules_; }
   /// By code ("RRF301") or name ("g10-tool-before-definition"), case-insensitive; nullptr if unknown.
   const Rule* find(std::string_view code_or_name) const;
+  /// The rule whose name is nearest to a misspelt one ("g10-mising-z" → g10-missing-z), nullptr when none is near
+  /// (a code like "RRF999" has none: codes one digit apart are unrelated rules).
+  const Rule* near_miss(std::string_view written) const;
 
  private:
   std::vector<const Rule*> rules_;

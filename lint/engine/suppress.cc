@@ -16,39 +16,10 @@ namespace {
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
-size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
-// "did you mean 'g10-missing-z'?" for a near miss, else "".
+// "; did you mean 'g10-missing-z' (RRF…)?" for a near miss, else "".
 std::string suggestion(std::string_view written, const RuleSet& rules) {
-  const std::string w = to_lower(written);
-  // A code-like word ("RRF999") has no meaningful near miss: codes one digit apart are unrelated rules.
-  if (w.size() >= 4 && w.starts_with("rrf") && std::isdigit(static_cast<unsigned char>(w[3]))) return "";
-  // A name farther than this is no near miss. Names whose lengths differ by more cannot be within it, and are not
-  // compared: a long word (a 50,000-byte "rule name") then costs nothing instead of its length times every name's.
-  const size_t limit = std::max<size_t>(2, w.size() / 4);
-  const Rule* best = nullptr;
-  size_t best_d = SIZE_MAX;
-  for (const Rule* r : rules.all()) {
-    const std::string_view name = r->meta.name;  // lower case (the registry test holds every name to it)
-    if ((name.size() > w.size() ? name.size() - w.size() : w.size() - name.size()) > limit) continue;
-    const size_t d = edit_distance(w, name);
-    if (d < best_d) {
-      best_d = d;
-      best = r;
-    }
-  }
-  if (!best || best_d > limit) return "";
-  return fmt::format("; did you mean '{}' ({})?", best->meta.name, best->meta.code);
+  const Rule* r = rules.near_miss(written);
+  return r ? fmt::format("; did you mean '{}' ({})?", r->meta.name, r->meta.code) : "";
 }
 
 struct FileDirectives {
