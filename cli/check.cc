@@ -355,8 +355,7 @@ int nothing_linted(const Totals& t, const PlanStats& stats, bool io_error) {
 int report_diff(std::ostream& os, const Totals& t, const CheckOptions& co, bool io_error) {
   os << t.diff;
   os.flush();
-  auto unsafe = [](const Diagnostic& d) { return d.fix && d.fix->applicability == Applicability::Unsafe; };
-  const auto hidden = co.unsafe_fixes ? 0 : std::ranges::count_if(t.diags, unsafe);
+  const size_t hidden = co.unsafe_fixes ? 0 : count(t.diags).unsafe_fixable;
   const std::string more = hidden ? fmt::format(" ({} unsafe fix{} hidden: add --unsafe-fixes to see {})", hidden,
                                                 hidden == 1 ? "" : "es", hidden == 1 ? "it" : "them")
                                   : "";
@@ -395,7 +394,8 @@ void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const C
   ro.uri_base = repo_root(ro.cwd).value_or(ro.cwd);
   if (!co.output_file.empty()) ro.color = co.color == "always";
   else ro.color = use_color(co.color, os == &std::cerr ? fileno(stderr) : fileno(stdout));
-  if (format == "json") render_json(*os, sm, t.diags, ro);
+  if (co.statistics) render_statistics(*os, t.diags, ro, format == "json");
+  else if (format == "json") render_json(*os, sm, t.diags, ro);
   else if (format == "json-lines") render_json_lines(*os, sm, t.diags, ro);
   else if (format == "sarif") render_sarif(*os, sm, t.diags, ro);
   else if (format == "github") render_github(*os, sm, t.diags, ro);
@@ -426,8 +426,8 @@ bool use_color(const std::string& mode, int fd) {
 }
 
 int run_check(const CliOptions& cli, const CheckOptions& co) {
-  if (co.add_suppressions && (co.fix || co.diff)) {
-    error("--add-suppressions cannot be combined with --fix or --diff");
+  if (const std::string why = conflicting_options(co); !why.empty()) {
+    error(why);
     return kExitError;
   }
   Settings settings(cli);

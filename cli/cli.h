@@ -259,6 +259,7 @@ struct CheckOptions {
   std::string output_file;
   bool exit_zero = false, verbose = false;
   bool fix = false, unsafe_fixes = false, diff = false;
+  bool statistics = false;                      // the number of findings per rule instead of the findings
   std::optional<std::string> add_suppressions;  // the reason (may be empty)
   unsigned jobs = 0;                            // machines linted at once; 0 = the CPU count, at most 8
   PlanOptions plan;
@@ -268,6 +269,9 @@ struct CheckOptions {
 unsigned default_threads();
 
 int run_check(const CliOptions& cli, const CheckOptions& co);
+/// Options of `check` that do not go together (--add-suppressions with --fix, --statistics with --diff or a format
+/// it does not print…): the error, else "".
+std::string conflicting_options(const CheckOptions& co);
 /// What check (on stderr) and the language server (as a window message) say when a machine's graph stopped at its
 /// node limit (Graph::truncated), `nodes`: the machine rules then judged only the commands before it. `title`: the
 /// card.

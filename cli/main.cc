@@ -178,6 +178,8 @@ void add_check(CLI::App& app, Commands& c) {
   check->add_flag("--fix", co.fix, "Apply safe fixes (rounds until stable, at most 10) and report what is left");
   check->add_flag("--unsafe-fixes", co.unsafe_fixes, "With --fix or --diff, apply unsafe fixes too");
   check->add_flag("--diff", co.diff, "Print the fixes as a unified diff and write nothing (exit 1 if there are any)");
+  check->add_flag("--statistics", co.statistics,
+                  "Print how many findings each rule has instead of the findings (text, concise or json)");
   check->add_flag("--force-exclude", co.plan.force_exclude,
                   "Apply exclude and .gitignore to paths named on the command line");
   check->add_flag("--no-respect-gitignore", c.no_gitignore, "Lint files that .gitignore excludes");

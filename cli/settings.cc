@@ -57,6 +57,15 @@ bool check_options(CliOptions& c, std::string& err, std::string& warn) {
   return true;
 }
 
+std::string conflicting_options(const CheckOptions& co) {
+  if (co.add_suppressions && (co.fix || co.diff)) return "--add-suppressions cannot be combined with --fix or --diff";
+  if (co.statistics && (co.diff || co.add_suppressions))
+    return "--statistics counts the findings of a report: it cannot be combined with --diff or --add-suppressions";
+  if (co.statistics && co.format_given && co.format != "text" && co.format != "concise" && co.format != "json")
+    return fmt::format("--statistics prints text or json, not --format {}", co.format);
+  return "";
+}
+
 void error(const std::string& msg) { std::cerr << "rrflint: error: " << msg << "\n"; }
 void warning(const std::string& msg) { std::cerr << "rrflint: warning: " << msg << "\n"; }
 

@@ -192,6 +192,45 @@ TEST_CASE("cli: concise, json, json-lines and -o", "[cli]") {
   CHECK(json::parse(t.read("out.sarif"))["version"] == "2.1.0");
 }
 
+TEST_CASE("cli: --statistics counts the findings per rule, most first, as text or json", "[cli]") {
+  TempTree t;
+  // Two RRF307 findings (each with a safe fix to M568), one RRF101 (no fix), and one file with none.
+  t.write("p/sys/config.g",
+          "M584 X0 Y1 Z2 E3\nM950 H1 C\"out1\" T1\nM563 P0 D0 H1\nG10 P0 R0 S0\nG10 P0 R10 S20\nM9999\n");
+  t.write("p/macros/park.g", "G1 X0\n");
+  auto o = run_rrflint(t.root(), "check p --firmware 3.5 --select RRF307,RRF101 --statistics");
+  CHECK(o.code == 1);  // the exit code of the findings, as without --statistics
+  CHECK(o.out ==
+        "2  RRF307  info     g10-temperature-form  2 fixable with --fix\n"
+        "1  RRF101  warning  unknown-command\n"
+        "0 errors, 1 warning, 2 infos in 1 file\n");
+  o = run_rrflint(t.root(), "check p --firmware 3.5 --select RRF307,RRF101 --statistics --format json");
+  const json doc = json::parse(o.out);
+  CHECK(doc["version"] == 1);
+  REQUIRE(doc["statistics"].size() == 2);
+  CHECK(doc["statistics"][0] == json{{"code", "RRF307"},
+                                     {"count", 2},
+                                     {"fixable", 2},
+                                     {"name", "g10-temperature-form"},
+                                     {"severity", "info"},
+                                     {"unsafe_fixable", 0},
+                                     {"url", docs_link("g10-temperature-form")}});
+  CHECK(doc["statistics"][1]["code"] == "RRF101");
+  CHECK(doc["summary"]["files_checked"] == 2);
+  CHECK(doc["summary"]["warnings"] == 1);
+  // Nothing found: the text says so; the exit code is 0.
+  o = run_rrflint(t.root(), "check p --select RRF116 --statistics");
+  CHECK(o.code == 0);
+  CHECK(o.out == "No problems found in 2 files.\n");
+  // Options it cannot go with are usage errors, not a silently different report.
+  for (const char* bad : {"--statistics --format sarif", "--statistics --format github", "--statistics --diff",
+                          "--statistics --add-suppressions"}) {
+    o = run_rrflint(t.root(), std::string("check p ") + bad);
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "--statistics"));
+  }
+}
+
 TEST_CASE("cli: sarif URIs are relative to the git top-level, from any folder", "[cli][sarif]") {
   TempTree t;
   fs::create_directories(t / ".git");

@@ -160,6 +160,13 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   w.end_array();
   w.key("machines");
   write_machines(w, sm, o.machines);
+  write_summary_json(w, diags, o);
+  w.member("version", 1);
+  w.end_object();
+  os << buf << "\n";
+}
+
+void write_summary_json(JsonWriter& w, const std::vector<Diagnostic>& diags, const RenderOptions& o) {
   const Counts c = count(diags);
   w.key("summary");
   w.begin_object();
@@ -171,9 +178,6 @@ void render_json(std::ostream& os, const SourceManager& sm, const std::vector<Di
   w.member("infos", c.infos);
   w.member("warnings", c.warnings);
   w.end_object();
-  w.member("version", 1);
-  w.end_object();
-  os << buf << "\n";
 }
 
 }  // namespace rrflint

@@ -4,6 +4,7 @@
 //   json.cc        `json`: one versioned document        json_lines.cc  `json-lines`: one object per line
 //   sarif.cc       `sarif`: SARIF 2.1.0 for GitHub code scanning and editors
 //   github.cc      `github`: GitHub Actions workflow commands (annotations)
+//   statistics.cc  `check --statistics`: the number of findings per rule, as text or json
 //   rule_docs.cc   the Markdown pages of docs/rules/ and the README's rule list
 #pragma once
 
@@ -77,6 +78,12 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
                   const RenderOptions& o);
 void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                    const RenderOptions& o);
+/// `check --statistics` (as ruff's): the number of findings per rule instead of the findings, most first, as text
+/// (a line per rule and the text summary) or, with `json`, as a versioned document (statistics.cc).
+void render_statistics(std::ostream& os, const std::vector<Diagnostic>& diags, const RenderOptions& o, bool json);
+class JsonWriter;
+/// The "summary" member of `json` and of `--statistics --format json`: the counts of a report.
+void write_summary_json(JsonWriter& w, const std::vector<Diagnostic>& diags, const RenderOptions& o);
 /// The sanitized display path of each file, worked out once per file for a whole report.
 class JsonPaths {
  public:
@@ -89,7 +96,6 @@ class JsonPaths {
   std::map<FileId, std::string> paths_;
 };
 
-class JsonWriter;
 /// One diagnostic as the object `json` and `json-lines` print; its "url" is rule_url(docs_base, name).
 void write_diagnostic_json(JsonWriter& w, JsonPaths& paths, const Diagnostic& d, std::string_view docs_base);
 /// Every diagnostic through write_diagnostic_json to `os`, in order, by writers `depth` containers deep (json: 2,
