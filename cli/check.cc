@@ -395,12 +395,7 @@ void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const C
   if (!co.output_file.empty()) ro.color = co.color == "always";
   else ro.color = use_color(co.color, os == &std::cerr ? fileno(stderr) : fileno(stdout));
   if (co.statistics) render_statistics(*os, t.diags, ro, format == "json");
-  else if (format == "json") render_json(*os, sm, t.diags, ro);
-  else if (format == "json-lines") render_json_lines(*os, sm, t.diags, ro);
-  else if (format == "sarif") render_sarif(*os, sm, t.diags, ro);
-  else if (format == "github") render_github(*os, sm, t.diags, ro);
-  else if (format == "concise") render_concise(*os, sm, t.diags, ro);
-  else render_text(*os, sm, t.diags, ro);
+  else render_report_as(format, *os, sm, t.diags, ro);
   os->flush();
 }
 

@@ -22,6 +22,7 @@
 #include "frontend/disk.h"
 #include "lint/base/trace.h"
 #include "lint/render/model_render.h"
+#include "lint/render/render.h"
 
 using namespace rrflint;
 using namespace rrflint::cli;
@@ -155,9 +156,9 @@ void add_check(CLI::App& app, Commands& c) {
       ->add_option("paths", co.paths, "SD-card roots, sys folders, repositories, .g files, or - for stdin (default: .)")
       ->type_name("PATH");
   c.format_opt =
-      check->add_option("--format", co.format, "Output format: text, concise, json, json-lines, sarif, github")
+      check->add_option("--format", co.format, "Output format: text, concise, json, json-lines, sarif, github, gitlab")
           ->type_name("FORMAT")
-          ->check(CLI::IsMember({"text", "concise", "json", "json-lines", "sarif", "github"}));
+          ->check(CLI::IsMember(std::vector<std::string>(std::begin(kReportFormats), std::end(kReportFormats))));
   check->add_option("--fail-on", cli.fail_on, "Lowest severity that makes the exit code 1: error, warning, info")
       ->type_name("SEVERITY")
       ->check(CLI::IsMember({"error", "warning", "info"}));

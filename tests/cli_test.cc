@@ -247,6 +247,48 @@ TEST_CASE("cli: sarif URIs are relative to the git top-level, from any folder", 
         "p/sys/config.g");
 }
 
+TEST_CASE("cli: gitlab Code Quality: one entry per finding, paths from the git top-level, stable fingerprints",
+          "[cli][gitlab]") {
+  TempTree t;
+  fs::create_directories(t / ".git");
+  // Two identical lines with the same finding: their fingerprints differ (the occurrence counts).
+  t.write("printers/p/sys/config.g", kConfig + "M9999\nM9999\n");
+  t.write("printers/p/macros/park.g", "G1 X0\n");
+  auto o = run_rrflint(t / "printers", "check p --format gitlab");
+  CHECK(o.code == 1);
+  const json doc = json::parse(o.out);
+  REQUIRE(doc.is_array());
+  REQUIRE(doc.size() == 4);  // RRF101 three times, RRF900 once
+  std::set<std::string> fingerprints;
+  for (const json& e : doc) {
+    for (const char* k : {"check_name", "description", "fingerprint", "severity"}) CHECK(e[k].is_string());
+    CHECK(e["location"]["path"] == "printers/p/sys/config.g");
+    CHECK(e["location"]["positions"]["begin"]["line"].is_number_unsigned());
+    fingerprints.insert(e["fingerprint"].get<std::string>());
+  }
+  CHECK(fingerprints.size() == doc.size());
+  CHECK(doc[0]["check_name"] == "RRF101");
+  CHECK(doc[0]["severity"] == "minor");  // a warning; an error is major, an info info
+  CHECK(doc[0]["location"]["positions"]["begin"] == json{{"column", 1}, {"line", 3}});
+  CHECK(contains(doc[0]["description"].get<std::string>(), "[RRF101 unknown-command]"));
+  CHECK(doc[1]["check_name"] == "RRF900");
+  CHECK(doc[1]["severity"] == "info");
+  // A line inserted above moves the findings but keeps their fingerprints: GitLab reports nothing new.
+  t.write("printers/p/sys/config.g", "; a new first line\n" + kConfig + "M9999\nM9999\n");
+  const json moved = json::parse(run_rrflint(t / "printers", "check p --format gitlab").out);
+  REQUIRE(moved.size() == doc.size());
+  for (size_t i = 0; i < doc.size(); ++i) {
+    CHECK(moved[i]["fingerprint"] == doc[i]["fingerprint"]);
+    CHECK(moved[i]["location"]["positions"]["begin"]["line"] ==
+          doc[i]["location"]["positions"]["begin"]["line"].get<int>() + 1);
+  }
+  // Nothing found: an empty array, which GitLab reads as "no issues".
+  t.write("printers/q/sys/config.g", "M584 X0 Y1 Z2\n");
+  o = run_rrflint(t / "printers", "check q --format gitlab");
+  CHECK(o.code == 0);
+  CHECK(json::parse(o.out) == json::array());
+}
+
 TEST_CASE("cli: github format is chosen under GITHUB_ACTIONS unless --format says otherwise", "[cli][github]") {
   TempTree t;
   t.write("p/sys/config.g", kConfig);

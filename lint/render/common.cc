@@ -23,6 +23,17 @@ Counts count(const std::vector<Diagnostic>& diags) {
   return c;
 }
 
+void render_report_as(std::string_view format, std::ostream& os, const SourceManager& sm,
+                      const std::vector<Diagnostic>& diags, const RenderOptions& o) {
+  if (format == "json") render_json(os, sm, diags, o);
+  else if (format == "json-lines") render_json_lines(os, sm, diags, o);
+  else if (format == "sarif") render_sarif(os, sm, diags, o);
+  else if (format == "github") render_github(os, sm, diags, o);
+  else if (format == "gitlab") render_gitlab(os, sm, diags, o);
+  else if (format == "concise") render_concise(os, sm, diags, o);
+  else render_text(os, sm, diags, o);
+}
+
 Range range_of(const SourceManager& sm, const Location& loc) {
   if (loc.file == kNoFile) return {};
   const SourceFile& f = sm.get(loc.file);

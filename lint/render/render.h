@@ -4,7 +4,9 @@
 //   json.cc        `json`: one versioned document        json_lines.cc  `json-lines`: one object per line
 //   sarif.cc       `sarif`: SARIF 2.1.0 for GitHub code scanning and editors
 //   github.cc      `github`: GitHub Actions workflow commands (annotations)
+//   gitlab.cc      `gitlab`: a GitLab Code Quality report
 //   statistics.cc  `check --statistics`: the number of findings per rule, as text or json
+//   fingerprint.cc what sarif and gitlab share: paths relative to the repository, stable fingerprints
 //   rule_docs.cc   the Markdown pages of docs/rules/ and the README's rule list
 #pragma once
 
@@ -78,6 +80,13 @@ void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<D
                   const RenderOptions& o);
 void render_github(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                    const RenderOptions& o);
+void render_gitlab(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
+                   const RenderOptions& o);
+/// The report formats of `check --format`, and the report in one of them (an unknown name: text).
+inline constexpr std::string_view kReportFormats[] = {"text",  "concise", "json",  "json-lines",
+                                                      "sarif", "github",  "gitlab"};
+void render_report_as(std::string_view format, std::ostream& os, const SourceManager& sm,
+                      const std::vector<Diagnostic>& diags, const RenderOptions& o);
 /// `check --statistics` (as ruff's): the number of findings per rule instead of the findings, most first, as text
 /// (a line per rule and the text summary) or, with `json`, as a versioned document (statistics.cc).
 void render_statistics(std::ostream& os, const std::vector<Diagnostic>& diags, const RenderOptions& o, bool json);

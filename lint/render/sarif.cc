@@ -12,6 +12,7 @@
 #include <map>
 
 #include "lint/engine/rule.h"
+#include "lint/render/fingerprint.h"
 #include "lint/render/json_writer.h"
 #include "lint/render/render.h"
 #include "lint/render/rule_docs.h"
@@ -52,24 +53,19 @@ struct Artifact {
   bool in_base = false;  // relative to %SRCROOT%
 };
 
+// Each file's artifactLocation: relative to the repository (%SRCROOT%) when inside it, else a file:// URI.
 struct UriMaker {
-  fs::path base, cwd;
+  RepoPaths paths;
   std::map<FileId, Artifact> cache;
 
   const Artifact& artifact(const SourceManager& sm, FileId file) {
     auto [it, fresh] = cache.try_emplace(file);
     if (!fresh) return it->second;
     Artifact& a = it->second;
-    if (file == kNoFile) {
-      a.uri = "unknown";
-      return a;
-    }
-    const fs::path display(sm.get(file).display_path());
-    const fs::path abs = (display.is_absolute() ? display : cwd / display).lexically_normal();
-    fs::path rel = abs.lexically_relative(base);
-    const std::string r = rel.generic_string();
-    if (!rel.empty() && !r.starts_with("..")) a = {uri_encode(r), true};
-    else a.uri = file_uri(abs);
+    const RepoPath& p = paths.of(sm, file);
+    if (file == kNoFile) a.uri = "unknown";
+    else if (p.in_base) a = {uri_encode(p.path), true};
+    else a.uri = file_uri(p.abs);
     return a;
   }
 };
@@ -187,57 +183,6 @@ void write_rule(JsonWriter& w, const Rule& r, std::string_view docs_base) {
   w.end_object();
 }
 
-// A stable fingerprint: the rule and the trimmed text of the finding's line, hashed (FNV-1a), plus the
-// occurrence of that hash in the file (GitHub's "hash:n" shape). It survives lines moving up or down. The hashes
-// of the line the last finding was on are kept by rule: findings come in order, and a long line of many commands
-// with a finding each would otherwise be hashed once per finding (the square of its length).
-class Fingerprints {
- public:
-  std::string operator()(const SourceManager& sm, const Diagnostic& d) {
-    const std::string hex = fmt::format("{:016x}", hash(sm, d));
-    const int n = ++seen_[fmt::format("{}\x1f{}", d.loc.file, hex)];
-    return fmt::format("{}:{}", hex, n);
-  }
-
- private:
-  uint64_t hash(const SourceManager& sm, const Diagnostic& d) {
-    uint64_t h = 1469598103934665603ull;
-    auto mix = [&](std::string_view s) {
-      for (unsigned char c : s) {
-        h ^= c;
-        h *= 1099511628211ull;
-      }
-    };
-    mix(d.code);
-    mix("\x1f");
-    if (d.loc.file == kNoFile) return h;
-    const SourceFile& f = sm.get(d.loc.file);
-    if (f.line_count() == 0) return h;
-    const uint32_t line0 = f.line_of(std::min(d.loc.span.begin, f.size()));
-    if (d.loc.file != file_ || line0 != line0_) {
-      file_ = d.loc.file;
-      line0_ = line0;
-      by_rule_.clear();
-    }
-    if (auto it = by_rule_.find(d.code); it != by_rule_.end()) return it->second;
-    std::string_view line = f.slice(f.line_span(line0));
-    while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
-    while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
-    mix(line);
-    by_rule_.emplace(d.code, h);
-    return h;
-  }
-
-  std::map<std::string, int> seen_;
-  FileId file_ = kNoFile;
-  uint32_t line0_ = 0;
-  std::map<std::string, uint64_t, std::less<>> by_rule_;
-};
-
-}  // namespace
-
-namespace {
-
 // One result; `index`: each rule's place in tool.driver.rules.
 void write_result(JsonWriter& w, const SourceManager& sm, UriMaker& uris, const Diagnostic& d,
                   const std::map<std::string_view, size_t>& index, Fingerprints& fingerprints) {
@@ -323,11 +268,8 @@ void write_result(JsonWriter& w, const SourceManager& sm, UriMaker& uris, const 
 
 void render_sarif(std::ostream& os, const SourceManager& sm, const std::vector<Diagnostic>& diags,
                   const RenderOptions& o) {
-  std::error_code ec;
-  UriMaker uris;
-  uris.cwd = o.cwd.empty() ? fs::current_path(ec) : o.cwd;
-  uris.base = (o.uri_base.empty() ? uris.cwd : o.uri_base).lexically_normal();
-  std::string base_uri = file_uri(uris.base);
+  UriMaker uris{RepoPaths(o)};
+  std::string base_uri = file_uri(uris.paths.base());
   if (!base_uri.ends_with("/")) base_uri += '/';
 
   std::string out;

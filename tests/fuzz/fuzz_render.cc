@@ -1,11 +1,12 @@
 // libFuzzer target: the renderers, on the findings of a card in the card format of tests/fuzz/fuzz_input.h. The
-// JSON, JSON Lines and SARIF reports (and the model as JSON) must parse back with nlohmann-json and have their
+// JSON, JSON Lines, SARIF and GitLab reports (and the model as JSON) must parse back with nlohmann-json and have their
 // expected structure, with one entry per finding; the text, concise and GitHub renderers must run. Run it with
 // scripts/fuzz.sh (tests/fuzz/RESULTS.md).
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -80,6 +81,22 @@ void check_sarif(const SourceManager& sm, const MachineResult& r, const RenderOp
     if (!res.contains("ruleId") || !res.contains("level") || !is_array_of(res, "locations", 1)) __builtin_trap();
 }
 
+// GitLab Code Quality: an array with one entry per finding, in order, and no fingerprint twice.
+void check_gitlab(const SourceManager& sm, const MachineResult& r, const RenderOptions& ro) {
+  std::ostringstream os;
+  render_gitlab(os, sm, r.diagnostics, ro);
+  const json doc = parsed(os.str());
+  if (!doc.is_array() || doc.size() != r.diagnostics.size()) __builtin_trap();
+  std::set<std::string> fingerprints;
+  for (size_t i = 0; i < doc.size(); ++i) {
+    const json& e = doc[i];
+    if (e.value("check_name", "") != r.diagnostics[i].code || !e.contains("description") ||
+        !e["location"].contains("path") || !e["location"]["positions"]["begin"]["line"].is_number_unsigned() ||
+        !fingerprints.insert(e.value("fingerprint", "")).second)
+      __builtin_trap();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -97,6 +114,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ro.machines.push_back({"card", r.target});
   check_json(sm, r, ro);
   check_sarif(sm, r, ro);
+  check_gitlab(sm, r, ro);
   std::ostringstream model;
   render_model_json(model, sm, r, "card");
   if (!parsed(model.str()).is_object()) __builtin_trap();
