@@ -110,17 +110,23 @@ void check_rrf3(const FileContext& cx, Sink& out) {
         out.report(kMeta, cx.at(v.param->span), message(tools::quote(pf, c), v.value));
     }
   };
-  each(574, 'S', [](int64_t s) { return s == 0; }, [&](const std::string& q, int64_t) {
-    return fmt::format("{} asks for endstop type 0, RRF 2's active-low switch: {} answers 'endstop type 0 is no longer "
-                       "supported. Use type 1 and invert the input pin instead.' and sets up no endstop on this line; "
-                       "write S1 and the pin with '!' (P\"!xstop\"), or S2 to home with the Z probe",
-                       q, on);
-  });
-  each(558, 'P', [](int64_t p) { return p == 4 || p == 6 || p == 7; }, [&](const std::string& q, int64_t p) {
-    return fmt::format("{} asks for Z probe type {}, an endstop input as the probe in RRF 2: {} answers 'Invalid Z "
-                       "probe type {}' and creates no probe; a switch probe is type P5 (or P8) with its pin in C\"…\"",
-                       q, p, on, p);
-  });
+  each(
+      574, 'S', [](int64_t s) { return s == 0; },
+      [&](const std::string& q, int64_t) {
+        return fmt::format(
+            "{} asks for endstop type 0, RRF 2's active-low switch: {} answers 'endstop type 0 is no longer "
+            "supported. Use type 1 and invert the input pin instead.' and sets up no endstop on this line; "
+            "write S1 and the pin with '!' (P\"!xstop\"), or S2 to home with the Z probe",
+            q, on);
+      });
+  each(
+      558, 'P', [](int64_t p) { return p == 4 || p == 6 || p == 7; },
+      [&](const std::string& q, int64_t p) {
+        return fmt::format(
+            "{} asks for Z probe type {}, an endstop input as the probe in RRF 2: {} answers 'Invalid Z "
+            "probe type {}' and creates no probe; a switch probe is type P5 (or P8) with its pin in C\"…\"",
+            q, p, on, p);
+      });
 }
 
 void check(const FileContext& cx, Sink& out) {

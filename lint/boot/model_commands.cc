@@ -372,10 +372,13 @@ void do_m558(Cx& x) {
     x.s.probes_known = false;
     return;
   }
+  auto P = get_int(x.pf, x.c, 'P');
+  // RRF 3 rejects RRF 2's endstop-input probe types before it creates a probe (RRF121 replaced-command).
+  if (x.s.firmware >= kRrf3_0 && P.known() && (P.value == 4 || P.value == 6 || P.value == 7)) return;
   Probe p;
   p.created = x.id;
   p.maybe = x.maybe;
-  if (auto P = get_int(x.pf, x.c, 'P'); P.known()) p.type = static_cast<int>(P.value);
+  if (P.known()) p.type = static_cast<int>(P.value);
   x.s.probes[k] = p;
 }
 

@@ -103,7 +103,10 @@ void m350(CommandCx& x) {
 
 // M574 X1 S1 P"xstop" (EndstopsManager::HandleM574): the axes named get an endstop position and type (S omitted:
 // 1, a switch); P gives the pins, a switch without P keeps the old ones, position 0 or another type drops them.
+// S0 on RRF 3 is an error and sets nothing.
 void m574(CommandCx& x) {
+  // RRF 3 rejects type 0 (RRF 2's active-low switch) before it changes anything (RRF121 replaced-command).
+  if (auto S = get_int(x.pf, x.c, 'S'); x.s.firmware >= kRrf3_0 && S.known() && S.value == 0) return;
   auto P = get_string(x.pf, x.c, 'P');
   for (Axis& a : x.s.axes) {
     if (!x.pf.find(x.c, a.letter)) continue;
