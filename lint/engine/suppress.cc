@@ -258,7 +258,11 @@ class SuppressionPass {
     Diagnostic diag = make(&unused_suppression, u, at,
                            fmt::format("unused suppression {} in '{}': {}", names,
                                        text.substr(d.keyword.begin, d.keyword.size()), unused_where(d.kind)));
-    diag.fix = unused_fix(src, d, unused, whole, names);
+    // No fix when the comment's ';' also cut an expression short (RRF113): the "comment" then holds the rest of the
+    // expression, text meant as code, which removing the comment would delete.
+    const Span ls = src.line_span(d.line);
+    if (!whole || d.own_line || !u.parsed.any_cut_from(ls.begin, d.span.begin + 1))
+      diag.fix = unused_fix(src, d, unused, whole, names);
     return diag;
   }
 

@@ -9,7 +9,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF900",
     .name = "unused-suppression",
     .severity = Severity::Info,
-    .fix = FixAvailability::Always,
+    .fix = FixAvailability::Sometimes,
     .tag = RuleTag::Unnecessary,
     .summary = "A suppression comment that suppresses nothing.",
     .docs = R"md(
@@ -40,7 +40,8 @@ M584 X0 Y1 Z2
 Safe. The fix removes the comment: the whole line when the comment is alone on its line, otherwise the comment
 and the blanks before it. When only some of the named rules are unused, it removes just those names from the
 list. A suppression of `unused-suppression` itself is judged last, after it had the chance to silence the
-other findings of this rule.
+other findings of this rule. There is no fix when the comment's `;` also cut an expression short
+(`semicolon-in-expression`, RRF113): the comment then holds the rest of the expression, which was meant as code.
 
 ## References
 - rrflint README, "Suppressing findings" (the comment syntax)
