@@ -7,6 +7,7 @@
 #include <set>
 
 #include "lint/engine/rule.h"
+#include "lint/engine/suppress.h"
 #include "rules/registry.h"
 
 namespace fs = std::filesystem;
@@ -339,8 +340,8 @@ bool rule_selector_known(std::string_view v) {
 }
 
 std::string unknown_rule_hint(std::string_view v) {
-  const Rule* r = builtin_rules().near_miss(v);
-  return r ? fmt::format("; did you mean '{}' ({})?", r->meta.name, r->meta.code) : " (see `rrflint rule --all`)";
+  const std::string hint = near_miss_hint(v, builtin_rules());
+  return hint.empty() ? " (see `rrflint rule --all`)" : hint;
 }
 
 std::vector<std::string> selector_codes(const std::vector<std::string>& selectors) {

@@ -16,12 +16,6 @@ namespace {
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
-// "; did you mean 'g10-missing-z' (RRF…)?" for a near miss, else "".
-std::string suggestion(std::string_view written, const RuleSet& rules) {
-  const Rule* r = rules.near_miss(written);
-  return r ? fmt::format("; did you mean '{}' ({})?", r->meta.name, r->meta.code) : "";
-}
-
 struct FileDirectives {
   const FileUnit* unit = nullptr;
   std::vector<Directive> directives;
@@ -178,9 +172,9 @@ class SuppressionPass {
         }
         for (const SuppressionEntry& e : d.entries)
           if (!e.rule && !e.all && e.prefix.empty())
-            found.push_back(make(
-                unknown_rule, *fd.unit, e.span,
-                fmt::format("unknown rule '{}' in suppression comment{}", clip(e.text), suggestion(e.text, rules_))));
+            found.push_back(make(unknown_rule, *fd.unit, e.span,
+                                 fmt::format("unknown rule '{}' in suppression comment{}", clip(e.text),
+                                             near_miss_hint(e.text, rules_))));
       }
     }
     filter(found);
@@ -304,6 +298,11 @@ void apply_suppressions(MachineResult& res, const RuleSet& rules, const std::vec
     return std::tie(a.loc.file, a.loc.span.begin, a.code, a.loc.span.end) <
            std::tie(b.loc.file, b.loc.span.begin, b.code, b.loc.span.end);
   });
+}
+
+std::string near_miss_hint(std::string_view written, const RuleSet& rules) {
+  const Rule* r = rules.near_miss(written);
+  return r ? fmt::format("; did you mean '{}' ({})?", r->meta.name, r->meta.code) : "";
 }
 
 }  // namespace rrflint

@@ -25,6 +25,10 @@ class RuleSet;
 struct LintOptions;
 struct MachineResult;
 
+/// "; did you mean 'g10-missing-z' (RRF306)?" for a misspelt rule name (RuleSet::near_miss), else "": the one wording
+/// of the hint, for suppression comments, the command line and the config file.
+std::string near_miss_hint(std::string_view written, const RuleSet& rules);
+
 enum class DirectiveKind : uint8_t { Line, NextLine, RangeStart, RangeEnd, File };
 std::string_view directive_keyword(DirectiveKind k);
 
