@@ -1,3 +1,5 @@
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -21,6 +23,19 @@ Counts count(const std::vector<Diagnostic>& diags) {
   }
   c.files = files.size();
   return c;
+}
+
+namespace {
+std::string plural(size_t n, std::string_view w) { return fmt::format("{} {}{}", n, w, n == 1 ? "" : "s"); }
+}  // namespace
+
+std::string summary_line(const Counts& c) {
+  return fmt::format("{}, {}, {} in {}", plural(c.errors, "error"), plural(c.warnings, "warning"),
+                     plural(c.infos, "info"), plural(c.files, "file"));
+}
+
+std::string no_problems_line(size_t files_checked) {
+  return files_checked ? fmt::format("No problems found in {}", plural(files_checked, "file")) : "No problems found";
 }
 
 void render_report_as(std::string_view format, std::ostream& os, const SourceManager& sm,

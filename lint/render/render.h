@@ -61,6 +61,10 @@ struct Counts {
   size_t errors = 0, warnings = 0, infos = 0, fixable = 0, unsafe_fixable = 0, files = 0;
 };
 Counts count(const std::vector<Diagnostic>& diags);
+/// The text formats' summary, without colour: "2 errors, 1 warning, 0 infos in 3 files" (no fix hint), and for no
+/// findings "No problems found in 3 files" (no count when `files_checked` is 0). Neither ends in a newline.
+std::string summary_line(const Counts& c);
+std::string no_problems_line(size_t files_checked);
 
 /// 1-based line/column (code points) of a location, and of its exclusive end.
 struct Range {

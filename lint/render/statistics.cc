@@ -38,8 +38,6 @@ std::vector<RuleCount> per_rule(const std::vector<Diagnostic>& diags) {
   return out;
 }
 
-std::string plural(size_t n, std::string_view w) { return fmt::format("{} {}{}", n, w, n == 1 ? "" : "s"); }
-
 }  // namespace
 
 void render_statistics(std::ostream& os, const std::vector<Diagnostic>& diags, const RenderOptions& o, bool json) {
@@ -83,14 +81,7 @@ void render_statistics(std::ostream& os, const std::vector<Diagnostic>& diags, c
                                    severity_name(r.severity), r.name, fixes.empty() ? 0 : name_width, fixes);
     os << line << "\n";
   }
-  if (diags.empty()) {
-    os << "No problems found"
-       << (o.files_checked ? fmt::format(" in {}", plural(o.files_checked, "file")) : std::string()) << ".\n";
-    return;
-  }
-  const Counts c = count(diags);
-  os << fmt::format("{}, {}, {} in {}\n", plural(c.errors, "error"), plural(c.warnings, "warning"),
-                    plural(c.infos, "info"), plural(c.files, "file"));
+  os << (diags.empty() ? no_problems_line(o.files_checked) + "." : summary_line(count(diags))) << "\n";
 }
 
 }  // namespace rrflint

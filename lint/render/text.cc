@@ -121,14 +121,10 @@ void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Di
   const Counts c = count(diags);
   if (o.fixed) os << st(fmt::format("Fixed {} finding{}.", o.fixed, o.fixed == 1 ? "" : "s"), "1;32") << "\n";
   if (diags.empty()) {
-    os << st("No problems found", "1;32")
-       << (o.files_checked ? fmt::format(" in {} file{}", o.files_checked, o.files_checked == 1 ? "" : "s") : "")
-       << ".\n";
+    os << st(no_problems_line(o.files_checked), "1;32") << ".\n";
     return;
   }
-  auto plural = [](size_t n, std::string_view w) { return fmt::format("{} {}{}", n, w, n == 1 ? "" : "s"); };
-  std::string summary = fmt::format("{}, {}, {} in {}", plural(c.errors, "error"), plural(c.warnings, "warning"),
-                                    plural(c.infos, "info"), plural(c.files, "file"));
+  std::string summary = summary_line(c);
   if (c.fixable) summary += fmt::format(" ({} fixable with --fix)", c.fixable);
   else if (c.unsafe_fixable && o.show_fix_hint)
     summary += fmt::format(" ({} fixable with --fix --unsafe-fixes)", c.unsafe_fixable);
