@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include "lint/boot/commands.h"
 #include "lint/engine/linter.h"
 #include "lint/render/model_render.h"
 #include "rules/registry.h"
@@ -301,4 +302,46 @@ TEST_CASE("model: M574 endstops per axis", "[model]") {
   CHECK(config("M574 X1 P{global.pin}\n")->end().axes[0].endstop.pins == "?");
   CHECK_FALSE(config("M574 X{move.axes[0].max} P\"x\"\n")->end().axes[0].endstop.position.known);
   CHECK(config(kUnknownIf + "  M574 X1 P\"x\"\nendif\n")->end().axes[0].endstop.maybe);
+}
+
+TEST_CASE("model: the pins devices hold", "[model]") {
+  // Names as RRF looks them up: no case, '_', '-', flags or main-board prefix; '+' lists; "nil" is no pin.
+  CHECK(pin_name("!^OUT_1").key == "0.out1");
+  CHECK(pin_name("0.out-1").key == "0.out1");
+  CHECK(pin_name("!121.temp0").key == "121.temp0");
+  CHECK(pin_name("007.io0.in").key == "7.io0.in");
+  CHECK(pin_name("nil").key.empty());
+  auto r = config(
+      "M308 S1 P\"temp1\" Y\"thermistor\"\nM950 H1 C\"out1\" T1\nM950 F0 C\"1.out2+out2.tach\"\n"
+      "M574 X1 S1 P\"io0.in\"\nM558 P5 C\"^io1.in\" H5\nM591 D0 P1 C\"io2.in\"\nM950 J0 C\"io3.in\"\n");
+  const MachineState& s = r->end();
+  REQUIRE(s.pins.size() == 8);
+  CHECK(s.pins.at("0.temp1").device == "sensor 1");
+  CHECK(s.pins.at("0.out1").device == "heater 1");
+  CHECK(s.pins.at("1.out2.tach").device == "fan 0");  // on the first pin's board
+  CHECK(s.pins.at("0.io0.in").device == "the X endstop");
+  CHECK(s.pins.at("0.io1.in").written == "^io1.in");
+  CHECK(s.pins.at("0.io2.in").device == "filament monitor 0");
+  CHECK(r->word(s.pins.at("0.io3.in").at) == "M950 J0 C\"io3.in\"");
+  // Given back: re-created elsewhere, deleted, another endstop type; a refused device takes no pin at all.
+  CHECK(config("M950 H1 C\"out1\" T1\nM950 H1 C\"out2\" T1\n")->end().pins.count("0.out1") == 0);
+  CHECK(config("M950 H1 C\"out1\" T1\nM950 H1 C\"nil\"\n")->end().pins.empty());
+  CHECK(config("M574 X1 S1 P\"io0.in\"\nM574 X1 S3\n")->end().pins.empty());
+  CHECK(config("M574 X1 S1 P\"io0.in\"\nM574 X1 S1\n")->end().pins.size() == 1);
+  CHECK(config("M950 F0 C\"out1\"\nM950 F1 C\"out2+out1\"\n")->end().pins.count("0.out2") == 0);
+  // Unknown: a device number from an expression; a holder inside an `if`; RRF 2 has no pin names.
+  CHECK_FALSE(config("M950 F{global.n} C\"out1\"\n")->end().pins_known);
+  CHECK(config(kUnknownIf + "  M950 F0 C\"out1\"\nendif\n")->end().pins.at("0.out1").maybe);
+  CHECK(config("M558 P5 C\"zprobe.in\"\n", Version(2, 5, 0))->end().pins.empty());
+  // rrflint model shows them.
+  std::ostringstream text;
+  render_model_text(text, r->sources, r->result, "m");
+  for (const char* part : {"\nPins\n", "0.io1.in", "Z probe 0", "\"^io1.in\"", "sys/config.g:5"})
+    CHECK(text.str().find(part) != std::string::npos);
+  std::ostringstream js;
+  render_model_json(js, r->sources, r->result, "m");
+  const auto j = nlohmann::json::parse(js.str());
+  CHECK(j["pins"][0]["pin"] == "0.io0.in");  // by name
+  CHECK(j["pins"][0]["device"] == "the X endstop");
+  CHECK(j["pins_known"] == true);
 }

@@ -4,7 +4,8 @@
 // - which form a G10 takes (tool offsets, a report, workplace origins, firmware retraction, a bad L);
 // - whether an M563 defines a tool or only reports one, and its X/Y/Z axis maps;
 // - the tool a G10 / M568 / M567 addresses (its P, or the current tool);
-// - the role the firmware gives a file by its name (config.g, config-override.g, tpre<n>.g, homeall.g, …).
+// - the role the firmware gives a file by its name (config.g, config-override.g, tpre<n>.g, homeall.g, …);
+// - the pins a command takes for a device, and the device whose pins it gives back (lint/boot/pins.cc).
 //
 // The unknown-values rule holds throughout: where the answer depends on something the model does not know (an
 // expression, the axes after an unreadable M584, a lone macro's unknown baseline), the answer is Unknown, and
@@ -13,6 +14,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -79,6 +81,42 @@ int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
 /// (switches to linear delta, 3), as M669 K numbers it; nullopt when the command does not set it, -1 when the type
 /// is unknown (an expression). RRF replaces the kinematics object only when the type changes (Move::SetKinematics).
 std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Version fw);
+
+/// One pin as RRF looks it up (IoPort::RemoveBoardAddress, IoPort::Allocate, GCodeBuffer::GetReducedString): `key`
+/// is "<board>.<name>", the name lowercased without '_' or '-' and without the '!', '^', '*' flags, the board 0 (the
+/// main board) when the pin has no "<n>." prefix; `written` is the pin as the line has it.
+struct PinName {
+  std::string key, written;
+};
+
+/// Parses one pin ("!^io1.in", "121.temp0"); "nil" (no pin) gives an empty key.
+PinName pin_name(std::string_view written);
+
+/// What a command does to the pins of one device (IoPort::AssignPorts): first it gives back every pin the device
+/// holds (a device re-created, deleted, or given new pins), then it takes `pins`, all or none: a pin held by another
+/// device ("Pin 'x' is not free") makes RRF give back the ones it took and leaves the device without pins.
+struct PinChange {
+  std::string device;  // "heater 1", "fan 0", "sensor 2", "Z probe 0", "the X endstop", "the laser"…; "" when unknown
+  std::vector<PinName> pins;  // "nil" left out; empty: the device only gives its pins back
+  ParamRef param;             // the parameter that names the pins (none for a change without pins)
+  bool pins_known = true;     // false: the pins are an expression (the old ones are given back all the same)
+};
+
+/// The pin changes of an M950 (C), M308 (P), M558 (C), M574 (P), M591 (C) or M452 (C) on RRF 3; empty for other
+/// commands, reports, and commands RRF rejects before it touches a pin. A device from an expression (`H{…}`) gives
+/// one change with an empty `device`: any device's pins may have changed.
+std::vector<PinChange> pin_changes(const ParsedFile& pf, const Command& c, const MachineState& s);
+
+/// The first pin of `ch` that RRF refuses: held by another device (`holder`), or named twice in `ch` (no holder).
+/// nullopt when RRF gives the device all its pins.
+struct PinClash {
+  size_t index = 0;  // in ch.pins
+  const PinOwner* holder = nullptr;
+};
+std::optional<PinClash> pin_clash(const MachineState& s, const PinChange& ch);
+
+/// The model's side: applies a command's pin changes to `s.pins` (`maybe`: the command may not run).
+void apply_pin_changes(MachineState& s, const std::vector<PinChange>& changes, NodeId id, bool maybe);
 
 /// The role the firmware gives a file by its name (docs/firmware-behaviour.md#system-files).
 enum class FileRole : uint8_t {

@@ -201,6 +201,13 @@ struct Tool {
   bool maybe = false;                // created inside a conditional block (it may not exist)
 };
 
+/// The device holding a pin (MachineState::pins, lint/boot/pins.cc): "heater 1", "the X endstop"…
+struct PinOwner {
+  std::string device, written;  // the pin as that device's command wrote it
+  NodeId at = kNoNode;          // the command that gave it the pin
+  bool maybe = false;           // that command may not have run, or the pin may have been refused
+};
+
 enum class MachineMode : uint8_t { FFF, CNC, Laser };
 
 struct Workplace {
@@ -257,6 +264,8 @@ struct MachineState {
   bool ports_known = true;       // false after an M950 J/P/S/R with an unknown number
   std::vector<PortUse> port_uses;
   std::map<int, Trigger> triggers;
+  std::map<std::string, PinOwner> pins;              // by PinName::key: the pins devices hold (RRF 3)
+  bool pins_known = true;                            // false after a device from an expression took or gave back pins
   std::map<int, FilamentMonitor> filament_monitors;  // by extruder
   bool filament_monitors_known = true;
   MachineMode mode = MachineMode::FFF;

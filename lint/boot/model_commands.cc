@@ -418,6 +418,7 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
     if (c.number == 31) return interpret_device_command(x);
     return do_g10(x);
   }
+  apply_pin_changes(s, pin_changes(pf, c, s), id, maybe);
   interpret_device_command(x);
   interpret_motion_command(x);
   switch (c.number) {
@@ -447,7 +448,7 @@ void interpret_command(MachineState& s, const ParsedFile& pf, const Command& c, 
       if (P && is_unknown_string(*P)) {
         s.tools_known = s.axes_known = s.heaters_known = s.fans_known = s.sensors_known = s.probes_known = false;
         s.extruders_known = false;
-        s.ports_known = s.filament_monitors_known = false;
+        s.ports_known = s.filament_monitors_known = s.pins_known = false;
       }
       break;
     }

@@ -1,5 +1,6 @@
 // `rrflint model`, the machine beyond the first tables: heater monitor slots, PID and fault detection; drivers,
-// steps/mm, microstepping and endstops; ports, their users, triggers and filament monitors; kinematics and leadscrews.
+// steps/mm, microstepping and endstops; ports, their users, triggers, filament monitors and the pins devices hold;
+// kinematics and leadscrews.
 #include "lint/render/model_tables.h"
 
 #include <fmt/format.h>
@@ -216,6 +217,11 @@ void render_ports(std::ostream& os, const SourceManager& sm, const MachineResult
     rows.push_back({std::to_string(e), "P" + fact(m.type), m.pin.empty() ? "-" : "\"" + sanitize(m.pin) + "\"",
                     where(r, sm, m.created) + maybe(m.maybe)});
   table_or_none(os, rows);
+  os << fmt::format("\nPins{}\n", s.pins_known ? "" : " (partly unknown: a device or a macro path from an expression)");
+  rows = {{"pin", "held by", "as written", "taken at"}};
+  for (const auto& [key, o] : s.pins)
+    rows.push_back({sanitize(key), o.device, "\"" + sanitize(o.written) + "\"", where(r, sm, o.at) + maybe(o.maybe)});
+  table_or_none(os, rows);
 }
 
 void render_kinematics(std::ostream& os, const SourceManager& sm, const MachineResult& r) {
@@ -362,6 +368,15 @@ void machine_json(json& j, const SourceManager& sm, const MachineResult& r) {
                    {"maybe", m.maybe},
                    {"created_at", at(m.created)}});
   j["filament_monitors"] = fms;
+  json pins = json::array();
+  for (const auto& [key, o] : s.pins)
+    pins.push_back({{"pin", sanitize(key)},
+                    {"device", o.device},
+                    {"written", sanitize(o.written)},
+                    {"maybe", o.maybe},
+                    {"at", at(o.at)}});
+  j["pins"] = pins;
+  j["pins_known"] = s.pins_known;
   json params = json::object();
   for (const auto& [name, f] : s.kinematics_params) params[name] = fact_json(f);
   const Leadscrews& l = s.leadscrews;
