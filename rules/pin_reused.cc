@@ -78,8 +78,8 @@ void check(const NodeContext& cx, Sink& out) {
     const auto clash = pin_clash(s, ch);
     if (!clash || (clash->holder && clash->holder->maybe)) continue;
     const PinName& p = ch.pins[clash->index];
-    const std::string answer = fmt::format("RRF answers \"Pin '{}' is not free\" and does not set up {}", bare(p),
-                                           ch.device);
+    const std::string answer =
+        fmt::format("RRF answers \"Pin '{}' is not free\" and does not set up {}", bare(p), ch.device);
     if (!clash->holder) {
       out.report(kMeta, cx.at(ch.param->span),
                  fmt::format("{} names pin \"{}\" twice: {}", tools::quote(pf, c), p.written, answer));
@@ -87,8 +87,8 @@ void check(const NodeContext& cx, Sink& out) {
     }
     const PinOwner& h = *clash->holder;
     out.report(kMeta, cx.at(ch.param->span),
-               fmt::format("{} gives pin \"{}\" to {}, but {} holds it: {}", tools::quote(pf, c), p.written,
-                           ch.device, h.device, answer))
+               fmt::format("{} gives pin \"{}\" to {}, but {} holds it: {}", tools::quote(pf, c), p.written, ch.device,
+                           h.device, answer))
         .note(cx.where(h.at), fmt::format("{} takes pin \"{}\" here", h.device, h.written));
   }
 }

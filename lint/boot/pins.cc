@@ -71,10 +71,9 @@ std::optional<PinChange> pins_from(const ParsedFile& pf, const Command& c, char 
 
 /// M950 <letter><n> C"pins": exactly one device letter (Platform::ConfigurePort); without C it changes no pin.
 void m950(const ParsedFile& pf, const Command& c, const MachineState& s, std::vector<PinChange>& out) {
-  static constexpr std::pair<char, const char*> kDevices[] = {{'D', "SD card"}, {'E', "LED strip"},
-                                                              {'R', "spindle"}, {'J', "GPIO input"},
-                                                              {'F', "fan"},     {'H', "heater"},
-                                                              {'P', "GPIO output"}, {'S', "servo"}};
+  static constexpr std::pair<char, const char*> kDevices[] = {
+      {'D', "SD card"}, {'E', "LED strip"}, {'R', "spindle"},     {'J', "GPIO input"},
+      {'F', "fan"},     {'H', "heater"},    {'P', "GPIO output"}, {'S', "servo"}};
   const char* kind = nullptr;
   char which = 0;
   for (const auto& [L, name] : kDevices) {
@@ -99,7 +98,8 @@ void m308(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
     return;  // "Sensor n does not exist"
   const std::string device = S.known() ? fmt::format("sensor {}", S.value) : std::string();
   auto P = get_string(pf, c, 'P');
-  const bool output_of = P.known() && P.value.size() > 1 && std::tolower(static_cast<unsigned char>(P.value[0])) == 's' &&
+  const bool output_of = P.known() && P.value.size() > 1 &&
+                         std::tolower(static_cast<unsigned char>(P.value[0])) == 's' &&
                          std::isdigit(static_cast<unsigned char>(P.value[1]));  // an additional output
   auto ch = output_of ? std::nullopt : pins_from(pf, c, 'P', device);
   if (!ch && create) ch.emplace(), ch->device = device;
