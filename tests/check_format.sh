@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The format check: every C++ file the repository tracks is formatted as .clang-format says (clang-format 14).
+# The format check: every C++ file of the repository (tracked, or new and not ignored: a file not yet added is
+# checked and fixed too) is formatted as .clang-format says (clang-format 14).
 # Skips (exit 77) when clang-format-14 is not installed; scripts/setup.sh --test installs it.
 #   tests/check_format.sh            check;  tests/check_format.sh --fix   reformat in place
 set -uo pipefail
@@ -10,7 +11,7 @@ if [[ -z "$cf" ]]; then
   exit 77
 fi
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
-  mapfile -t files < <(git ls-files '*.cc' '*.h')
+  mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.cc' '*.h')  # new files too
 else
   mapfile -t files < <(find lint rules frontend cli tests bench -name '*.cc' -o -name '*.h')
 fi
