@@ -182,6 +182,31 @@ TEST_CASE("sarif: fingerprints follow the line's text, not its number", "[sarif]
   CHECK(ha[1].ends_with(":2"));
 }
 
+TEST_CASE("gitlab: fingerprints stay unique for files whose paths show alike", "[gitlab]") {
+  // Names that differ only in invalid UTF-8 show alike (U+FFFD); "x/./c.g" and "x/c.g" name one path. Found by
+  // fuzz_render: two findings on the same line text got one fingerprint, and GitLab would have kept one.
+  SourceManager sm;
+  std::vector<Diagnostic> ds;
+  for (const char* name : {"x/a\x95.g", "x/a\x96.g", "x/./c.g", "x/c.g", "x/plain.g"}) {
+    const SourceFile& f = sm.add(name, std::string("/sys/") + name, "M9999\n");
+    Diagnostic d;
+    d.code = "RRF101";
+    d.name = "unknown-command";
+    d.loc = Location{f.id(), Span{0, 5}};
+    d.message = "m";
+    ds.push_back(d);
+  }
+  RenderOptions o;
+  o.uri_base = o.cwd = "/r";
+  std::ostringstream os;
+  render_gitlab(os, sm, ds, o);
+  const json doc = json::parse(os.str());
+  REQUIRE(doc.size() == 5);
+  std::set<std::string> fingerprints;
+  for (const json& e : doc) CHECK(fingerprints.insert(e["fingerprint"].get<std::string>()).second);
+  CHECK(doc[0]["location"]["path"] == doc[1]["location"]["path"]);  // shown alike
+}
+
 TEST_CASE("sarif: valid against the SARIF 2.1.0 schema", "[sarif][schema]") {
   const fs::path schema = fs::path(RRFLINT_SOURCE_DIR) / "../shared/schemas/sarif-schema-2.1.0.json";
   if (!fs::exists(schema)) {

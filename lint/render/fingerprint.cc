@@ -35,9 +35,9 @@ uint64_t fnv1a(std::string_view s, uint64_t h) {
   return h;
 }
 
-std::string Fingerprints::operator()(const SourceManager& sm, const Diagnostic& d) {
+std::string Fingerprints::operator()(const SourceManager& sm, const Diagnostic& d, std::string_view path) {
   const std::string hex = fmt::format("{:016x}", hash(sm, d));
-  const int n = ++seen_[fmt::format("{}\x1f{}", d.loc.file, hex)];
+  const int n = ++seen_[path.empty() ? fmt::format("f{}\x1f{}", d.loc.file, hex) : fmt::format("p{}\x1f{}", path, hex)];
   return fmt::format("{}:{}", hex, n);
 }
 

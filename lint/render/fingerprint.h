@@ -41,7 +41,9 @@ class RepoPaths {
 /// line of many commands with a finding each would otherwise be hashed once per finding (the square of its length).
 class Fingerprints {
  public:
-  std::string operator()(const SourceManager& sm, const Diagnostic& d);
+  /// The occurrence is counted per file, or per `path` when one is given: a report that names files by path must
+  /// count two files under one path (paths that differ only in invalid UTF-8, "a/./b" and "a/b") as one file.
+  std::string operator()(const SourceManager& sm, const Diagnostic& d, std::string_view path = {});
 
  private:
   uint64_t hash(const SourceManager& sm, const Diagnostic& d);

@@ -52,8 +52,10 @@ void render_gitlab(std::ostream& os, const SourceManager& sm, const std::vector<
     w.member("check_name", d.code);
     w.member("description", fmt::format("{} [{} {}]", sanitize(d.message), d.code, d.name));
     // The line hash names the rule, the line's text and its occurrence in the file; the path makes it unique
-    // across files.
-    w.member("fingerprint", fmt::format("{:016x}", fnv1a(fingerprints(sm, d), fnv1a(path + '\x1f'))));
+    // across files. The path as it is, not as shown: two names that differ only in invalid UTF-8 show alike. Two
+    // files under one path (a reader's "a/./b" and "a/b") count as one file, so their findings still differ.
+    const std::string& raw = d.loc.file == kNoFile ? path : p.path;
+    w.member("fingerprint", fmt::format("{:016x}", fnv1a(fingerprints(sm, d, raw), fnv1a(raw + '\x1f'))));
     w.key("location");
     w.begin_object();
     w.member("path", path);
