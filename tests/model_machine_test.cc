@@ -332,6 +332,11 @@ TEST_CASE("model: the pins devices hold", "[model]") {
   // Unknown: a device number from an expression; a holder inside an `if`; RRF 2 has no pin names.
   CHECK_FALSE(config("M950 F{global.n} C\"out1\"\n")->end().pins_known);
   CHECK(config(kUnknownIf + "  M950 F0 C\"out1\"\nendif\n")->end().pins.at("0.out1").maybe);
+  // A pin a maybe-holder may hold is taken (maybe) by the next device; the first one giving its pins back later
+  // does not free it.
+  auto mh = config(kUnknownIf + "  M950 F0 C\"out1\"\nendif\nM950 F1 C\"out1\"\nM950 F0 C\"nil\"\n");
+  CHECK(mh->end().pins.at("0.out1").device == "fan 1");
+  CHECK(mh->end().pins.at("0.out1").maybe);
   CHECK(config("M558 P5 C\"zprobe.in\"\n", Version(2, 5, 0))->end().pins.empty());
   // rrflint model shows them.
   std::ostringstream text;

@@ -264,7 +264,8 @@ struct MachineState {
   bool ports_known = true;       // false after an M950 J/P/S/R with an unknown number
   std::vector<PortUse> port_uses;
   std::map<int, Trigger> triggers;
-  std::map<std::string, PinOwner> pins;              // by PinName::key: the pins devices hold (RRF 3)
+  std::map<std::string, PinOwner> pins;                       // by PinName::key: the pins devices hold (RRF 3)
+  std::map<std::string, std::vector<std::string>> pins_held;  // the same by device (PinOwner::device -> keys)
   bool pins_known = true;                            // false after a device from an expression took or gave back pins
   std::map<int, FilamentMonitor> filament_monitors;  // by extruder
   bool filament_monitors_known = true;

@@ -175,12 +175,21 @@ void apply_pin_changes(MachineState& s, const std::vector<PinChange>& changes, N
       s.pins_known = false;
       continue;
     }
-    // Given back even inside an `if`: a pin that may be free is not reported as taken.
-    std::erase_if(s.pins, [&](const auto& kv) { return kv.second.device == ch.device; });
+    // Given back even inside an `if`: a pin that may be free is not reported as taken. (Through the device's own
+    // list: a long file names many pins, and most commands that name one give some back.)
+    if (auto held = s.pins_held.find(ch.device); held != s.pins_held.end()) {
+      for (const std::string& key : held->second) s.pins.erase(key);
+      s.pins_held.erase(held);
+    }
     if (!ch.pins_known) continue;
     const auto clash = pin_clash(s, ch);
     if (clash && (!clash->holder || !clash->holder->maybe)) continue;  // refused: the device holds no pin
-    for (const PinName& p : ch.pins) s.pins[p.key] = PinOwner{ch.device, p.written, id, maybe || clash.has_value()};
+    for (const PinName& p : ch.pins) {
+      PinOwner& o = s.pins[p.key];
+      if (!o.device.empty() && o.device != ch.device) std::erase(s.pins_held[o.device], p.key);  // a maybe holder
+      o = PinOwner{ch.device, p.written, id, maybe || clash.has_value()};
+      s.pins_held[ch.device].push_back(p.key);
+    }
   }
 }
 
