@@ -60,18 +60,6 @@ M950 J1
 )md",
 };
 
-/// The one device letter of this M950, or 0 when it has none, several (RRF rejects those differently) or one
-/// that is not H or F.
-char device_letter(const ParsedFile& pf, const Command& c) {
-  char found = 0;
-  for (const char L : {'D', 'E', 'R', 'J', 'F', 'H', 'P', 'S'}) {
-    if (!pf.find(c, L)) continue;
-    if (found) return 0;
-    found = L;
-  }
-  return found == 'H' || found == 'F' ? found : 0;
-}
-
 /// ConfigureFanPort() says "Fan n not found" from 3.5.0-rc.4, "Fan n does not exist" before.
 constexpr Version kFanNotFound = Version::rc(3, 5, 0, 4);
 
@@ -90,8 +78,8 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   if (pf.find(c, 'C')) return;
-  const char letter = device_letter(pf, c);
-  if (!letter) return;
+  const char letter = m950_device(pf, c, s.firmware);
+  if (letter != 'H' && letter != 'F') return;
   const auto v = get_int(pf, c, letter);
   if (!v.known() || v.value < 0) return;
   const int n = static_cast<int>(v.value);

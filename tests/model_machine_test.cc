@@ -154,6 +154,13 @@ TEST_CASE("model: M950 ports and the commands that use them", "[model]") {
   CHECK(config("M950 R0 C\"spindle\"\n", Version(3, 2, 2))->end().ports[3].empty());
   CHECK(config("M950 J0 P1 C\"io0.in\"\n")->end().ports[0].empty());
   CHECK(config("M950 J0 C\"io0.in\"\nM950 J0 C\"nil\"\n")->end().ports[0].empty());
+  // The heaters and fans count the device letters the same way: two of them create nothing; a letter the version
+  // does not read (E before 3.5.0-beta.4, D before 3.4, R before 3.3) is no device letter.
+  CHECK(config("M950 H1 F1 C\"out1\" T1\n")->end().heaters.empty());
+  CHECK(config("M950 F1 E0 C\"out1\"\n")->end().fans.empty());
+  CHECK(config("M950 F1 E0 C\"out1\"\n", Version(3, 4, 6))->end().fans.count(1) == 1);
+  CHECK(config("M950 H1 D0 C\"out1\" T1\n", Version(3, 3, 0))->end().heaters.count(1) == 1);
+  CHECK(config("M950 E0 C\"led\"\n", Version(3, 4, 6))->end().pins.empty());
   CHECK_FALSE(config("M950 J{move.axes[0].max} C\"io0.in\"\n")->end().ports_known);
   auto m = config(kUnknownIf + "  M950 J0 C\"io0.in\"\n  M42 P{move.axes[0].max} S1\nendif\n");
   CHECK(m->end().ports[0].at(0).maybe);

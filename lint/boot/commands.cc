@@ -50,6 +50,18 @@ bool m563_defines(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
+char m950_device(const ParsedFile& pf, const Command& c, Version fw) {
+  char which = 0;
+  for (char L : {'D', 'E', 'R', 'J', 'F', 'H', 'P', 'S'}) {
+    if (!pf.find(c, L) || (L == 'R' && fw < kRrf3_3) || (L == 'D' && fw < kRrf3_4) ||
+        (L == 'E' && fw < Version::beta(3, 5, 0, 4)))
+      continue;
+    if (which) return 0;
+    which = L;
+  }
+  return which;
+}
+
 M563Map m563_map(const ParsedFile& pf, const Command& c, const MachineState& s, char letter) {
   M563Map m;
   m.letter = letter;

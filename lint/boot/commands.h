@@ -82,6 +82,11 @@ int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
 /// is unknown (an expression). RRF replaces the kinematics object only when the type changes (Move::SetKinematics).
 std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Version fw);
 
+/// The one device letter of an M950 (Platform::ConfigurePort: "exactly one of FHJPSR must be given"): J, F, H, P, S,
+/// and from the version that reads them R (spindles, 3.3), D (SD card, 3.4; the 6HC's only until 3.5.0-beta.4, not
+/// told apart here) and E (LED strip, 3.5.0-beta.4); 0 when it has none or several.
+char m950_device(const ParsedFile& pf, const Command& c, Version fw);
+
 /// One pin as RRF looks it up (IoPort::RemoveBoardAddress, IoPort::Allocate, GCodeBuffer::GetReducedString): `key`
 /// is "<board>.<name>", the name lowercased without '_' or '-' and without the '!', '^', '*' flags, the board 0 (the
 /// main board) when the pin has no "<n>." prefix; `written` is the pin as the line has it.

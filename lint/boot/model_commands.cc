@@ -283,34 +283,30 @@ void do_m950(Cx& x) {
   const bool nil = pin.known() && to_lower(pin.value) == "nil";
   auto device = [&](char L, auto& map, bool& known_flag, auto make) {
     auto v = get_int(x.pf, x.c, L);
-    if (!v.present()) return false;
     if (!v.known()) {
       known_flag = false;
-      return true;
+      return;
     }
     int n = static_cast<int>(v.value);
     if (nil && !x.maybe) {
       map.erase(n);
-      return true;
+      return;
     }
-    if (!pin.present()) return true;  // reconfiguring or reporting an existing device
+    if (!pin.present()) return;  // reconfiguring or reporting an existing device
     auto d = make();
     d.created = x.id;
     d.maybe = x.maybe || !pin.known();
     map[n] = d;
-    return true;
   };
-  if (device('H', s.heaters, s.heaters_known, [&] {
-        Heater h;
-        if (auto t = get_int(x.pf, x.c, 'T'); t.known()) h.sensor = static_cast<int>(t.value);
-        return h;
-      })) {
-    auto v = get_int(x.pf, x.c, 'H');
-    if (v.known() && s.bed_heater == v.value) { /* defaults come only from M140 after creation */
-    }
-    return;
-  }
-  if (device('F', s.fans, s.fans_known, [] { return Fan{}; })) return;
+  // Exactly one device letter (m950_device); J, P, S, R, D and E are the ports' (model_devices.cc).
+  const char letter = m950_device(x.pf, x.c, s.firmware);
+  if (letter == 'H')
+    device('H', s.heaters, s.heaters_known, [&] {
+      Heater h;
+      if (auto t = get_int(x.pf, x.c, 'T'); t.known()) h.sensor = static_cast<int>(t.value);
+      return h;
+    });
+  else if (letter == 'F') device('F', s.fans, s.fans_known, [] { return Fan{}; });
 }
 
 void do_m308(Cx& x) {

@@ -116,15 +116,8 @@ std::string pin_text(const Val<std::string>& pin) { return pin.known() ? pin.val
 
 // M950 with exactly one device letter (Platform::ConfigurePort): J, P, S or R (3.3+) here; H and F elsewhere.
 void m950_port(CommandCx& x) {
-  const bool spindles = x.s.firmware >= kRrf3_3;
-  int letters = 0;
-  char which = 0;
-  for (char L : {'D', 'E', 'R', 'J', 'F', 'H', 'P', 'S'}) {
-    if (!x.pf.find(x.c, L) || (L == 'R' && !spindles)) continue;
-    ++letters;
-    which = L;
-  }
-  if (letters != 1 || std::string_view("JPSR").find(which) == std::string_view::npos) return;
+  const char which = m950_device(x.pf, x.c, x.s.firmware);
+  if (!which || std::string_view("JPSR").find(which) == std::string_view::npos) return;
   const PortKind kind = which == 'J'   ? PortKind::GpioIn
                         : which == 'P' ? PortKind::GpioOut
                         : which == 'S' ? PortKind::Servo

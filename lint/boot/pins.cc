@@ -69,18 +69,22 @@ std::optional<PinChange> pins_from(const ParsedFile& pf, const Command& c, char 
   return ch;
 }
 
+/// A change by which `device` only gives its pins back (deleted or re-created without pins).
+PinChange release_only(std::string device) {
+  PinChange ch;
+  ch.device = std::move(device);
+  return ch;
+}
+
 /// M950 <letter><n> C"pins": exactly one device letter (Platform::ConfigurePort); without C it changes no pin.
 void m950(const ParsedFile& pf, const Command& c, const MachineState& s, std::vector<PinChange>& out) {
   static constexpr std::pair<char, const char*> kDevices[] = {
       {'D', "SD card"}, {'E', "LED strip"}, {'R', "spindle"},     {'J', "GPIO input"},
       {'F', "fan"},     {'H', "heater"},    {'P', "GPIO output"}, {'S', "servo"}};
+  const char which = m950_device(pf, c, s.firmware);
   const char* kind = nullptr;
-  char which = 0;
-  for (const auto& [L, name] : kDevices) {
-    if (!pf.find(c, L) || (L == 'R' && s.firmware < kRrf3_3)) continue;
-    if (kind) return;  // "exactly one of FHJPSR must be given"
-    kind = name, which = L;
-  }
+  for (const auto& [L, name] : kDevices)
+    if (L == which) kind = name;
   if (!kind || !pf.find(c, 'C')) return;
   auto n = get_int(pf, c, which);
   if (n.known() && n.value < 0) return;
@@ -102,7 +106,7 @@ void m308(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
                          std::tolower(static_cast<unsigned char>(P.value[0])) == 's' &&
                          std::isdigit(static_cast<unsigned char>(P.value[1]));  // an additional output
   auto ch = output_of ? std::nullopt : pins_from(pf, c, 'P', device);
-  if (!ch && create) ch.emplace(), ch->device = device;
+  if (!ch && create) ch = release_only(device);
   if (ch) out.push_back(std::move(*ch));
 }
 
@@ -117,7 +121,7 @@ void m558(const ParsedFile& pf, const Command& c, std::vector<PinChange>& out) {
   // Types 0 (no probe) and 10 (motor stall) read no pins.
   const bool no_pins = P.known() && (P.value == 0 || P.value == 10);
   auto ch = no_pins ? std::nullopt : pins_from(pf, c, 'C', device);
-  if (!ch) ch.emplace(), ch->device = device;
+  if (!ch) ch = release_only(device);
   out.push_back(std::move(*ch));
 }
 
@@ -153,7 +157,7 @@ void m591(const ParsedFile& pf, const Command& c, std::vector<PinChange>& out) {
   const std::string device = D.known() ? fmt::format("filament monitor {}", D.value) : std::string();
   auto P = get_int(pf, c, 'P');
   auto ch = P.known() && P.value == 0 ? std::nullopt : pins_from(pf, c, 'C', device);  // P0 only deletes
-  if (!ch) ch.emplace(), ch->device = device;
+  if (!ch) ch = release_only(device);
   out.push_back(std::move(*ch));
 }
 
