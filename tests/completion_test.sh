@@ -39,7 +39,7 @@ expect "rrflint check --jobs " ""                       # a number: nothing to o
 expect "rrflint check --select RRF90" "RRF900 RRF901"
 expect "rrflint check --ignore RRF1,g10-tool-b" "RRF1,g10-tool-before-definition"
 expect "rrflint config --extend-select g10-imp" "g10-implicit-z"
-expect "rrflint rule RRF50" "RRF501 RRF502 RRF503 RRF504 RRF505 RRF506 RRF507"
+expect "rrflint rule RRF50" "RRF501 RRF502 RRF503 RRF504 RRF505 RRF506 RRF507 RRF508"
 expect "rrflint rule unused-s" "unused-suppression"
 expect "rrflint model --format " "text json"
 expect "rrflint server -" "-h --help"

@@ -152,10 +152,16 @@ TEST_CASE("matrix: a card whose config.g cannot be linted is an error; the other
     CHECK(o.code == 2);
     CHECK(contains(o.err, "UTF-16"));
   }
-  SECTION("an empty config.g is linted: nothing in it is wrong") {
-    auto o = run_guarded(t.root(), "check empty");
-    CHECK(o.code == 0);
-    CHECK(contains(o.out, "No problems found in 1 file"));
+  SECTION("an empty config.g is linted, and said to be empty (RRF508), never a pass") {
+    auto o = run_guarded(t.root(), "check empty --format concise");
+    CHECK(o.code == 1);
+    CHECK(contains(o.out,
+                   "empty/sys/config.g:1:1: error RRF508 [empty-config] config.g holds no command (the file is "
+                   "empty)"));
+    // The same buffer on standard input, named config.g (a `cat missing | rrflint check …` pipe).
+    o = run_guarded(t.root(), "check - --stdin-filename config.g --format concise", "");
+    CHECK(o.code == 1);
+    CHECK(contains(o.out, "RRF508"));
   }
   SECTION("several cards: 2 if any card could not be linted, and the others are still reported") {
     auto o = run_guarded(t.root(), "check good bin --format concise");
@@ -164,7 +170,9 @@ TEST_CASE("matrix: a card whose config.g cannot be linted is an error; the other
     CHECK(contains(o.err, "cannot lint config.g"));
     o = run_guarded(t.root(), "check good empty");
     CHECK(o.code == 1);  // findings, and every card linted
-    o = run_guarded(t.root(), "check empty good --fail-on error");
+    o = run_guarded(t.root(), "check good empty --fail-on error");
+    CHECK(o.code == 1);  // the empty config.g is an error (RRF508)
+    o = run_guarded(t.root(), "check good empty --fail-on error --ignore RRF508");
     CHECK(o.code == 0);
   }
 }
