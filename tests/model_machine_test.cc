@@ -217,6 +217,12 @@ TEST_CASE("model: kinematics parameters and leadscrews dropped by a type change"
   CHECK(delta->end().kinematics == 3);
   CHECK(delta->end().kinematics_params.at("M665 L").value == 215);
   CHECK(config("M665 R105 L215\nM669 K0\n")->end().kinematics_params.empty());
+  // A refused M671 (lists of different lengths, one list alone, more than 4) keeps the leadscrews as they were.
+  auto k = config("M671 X-10:110 Y50:50\nM671 X0:1:2 Y0:1\nM671 X5:6\nM671 X0:1:2:3:4 Y0:1:2:3:4\n");
+  CHECK(k->end().leadscrews.x == std::vector<double>{-10, 110});
+  CHECK(k->word(k->end().leadscrews.set) == "M671 X-10:110 Y50:50");
+  CHECK(config("M671 X0:1:2 Y0:1\n")->end().leadscrews.set == kNoNode);
+  CHECK_FALSE(config("M671 X{global.a} Y0:1\n")->end().leadscrews.known);
   auto u = config("M671 X0:1 Y0:1\nM669 K{move.axes[0].max}\n");
   CHECK(u->end().leadscrews.dropped_maybe);
   auto m = config("M671 X0:1 Y0:1\n" + kUnknownIf + "  M669 K1\nendif\n");

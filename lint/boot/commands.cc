@@ -50,6 +50,33 @@ bool m563_defines(const ParsedFile& pf, const Command& c) {
   return false;
 }
 
+M671Read m671_read(const ParsedFile& pf, const Command& c) {
+  M671Read r;
+  const auto X = get_float_list(pf, c, 'X');
+  const auto Y = get_float_list(pf, c, 'Y');
+  if (!X.present() && !Y.present()) return r;
+  if (X.known()) r.x = X.value.size();
+  if (Y.known()) r.y = Y.value.size();
+  if (r.x > kMaxLeadscrews || r.y > kMaxLeadscrews) r.form = M671Form::TooLong;
+  else if (!X.present() || !Y.present()) r.form = M671Form::Mismatch;
+  else if (!X.known() || !Y.known()) r.form = M671Form::Unknown;
+  else r.form = r.x == r.y ? M671Form::Set : M671Form::Mismatch;
+  return r;
+}
+
+bool has_leadscrews(int kinematics) {
+  switch (kinematics) {
+    case 0:
+    case 1:
+    case 4:
+    case 5:
+    case 8:
+    case 9:
+    case 11: return true;
+    default: return false;
+  }
+}
+
 char m950_device(const ParsedFile& pf, const Command& c, Version fw) {
   char which = 0;
   for (char L : {'D', 'E', 'R', 'J', 'F', 'H', 'P', 'S'}) {

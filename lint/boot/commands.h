@@ -82,6 +82,23 @@ int m585_axis(const ParsedFile& pf, const Command& c, const MachineState& s);
 /// is unknown (an expression). RRF replaces the kinematics object only when the type changes (Move::SetKinematics).
 std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Version fw);
 
+/// What an M671 does with the Z leadscrews (ZLeadscrewKinematics::Configure, the same from 2.05 to 3.5): X and Y
+/// lists of equal length set them (Set; Unknown when a list is an expression); one list alone, or lists of
+/// different lengths, are refused with "Specify 1, 2, 3 or 4 X and Y coordinates in M671" (Mismatch), a list of
+/// more than 4 with "array too long, max length = 4" (TooLong); either way the leadscrews stay as they were. Without
+/// X and Y it reports them or sets only S, P or F (Other).
+enum class M671Form : uint8_t { Other, Set, Unknown, Mismatch, TooLong };
+struct M671Read {
+  M671Form form = M671Form::Other;
+  size_t x = 0, y = 0;  // the lengths of the lists (0 when absent or unknown)
+};
+inline constexpr size_t kMaxLeadscrews = 4;
+M671Read m671_read(const ParsedFile& pf, const Command& c);
+
+/// Does the kinematics of this M669 K type read M671 (ZLeadscrewKinematics: Cartesian, CoreXY, CoreXYU, CoreXYUV,
+/// SCARA, five-bar SCARA, Markforged)? CoreXZ refuses M671; deltas, polar and Hangprinter have no leadscrews.
+bool has_leadscrews(int kinematics);
+
 /// The one device letter of an M950 (Platform::ConfigurePort: "exactly one of FHJPSR must be given"): J, F, H, P, S,
 /// and from the version that reads them R (spindles, 3.3), D (SD card, 3.4; the 6HC's only until 3.5.0-beta.4, not
 /// told apart here) and E (LED strip, 3.5.0-beta.4); 0 when it has none or several.

@@ -121,14 +121,15 @@ void m574(CommandCx& x) {
 }
 
 void m671(CommandCx& x) {
-  auto X = get_float_list(x.pf, x.c, 'X');
-  auto Y = get_float_list(x.pf, x.c, 'Y');
-  if (!X.present() && !Y.present()) return;  // a report (or S/F alone)
+  const M671Form form = m671_read(x.pf, x.c).form;
+  if (form != M671Form::Set && form != M671Form::Unknown) return;  // a report, S/P/F alone, or refused
   Leadscrews& l = x.s.leadscrews;
   l = Leadscrews{};
-  if (X.known()) l.x = X.value;
-  if (Y.known()) l.y = Y.value;
-  l.known = X.known() && Y.known() && !x.maybe;
+  if (form == M671Form::Set) {
+    l.x = get_float_list(x.pf, x.c, 'X').value;
+    l.y = get_float_list(x.pf, x.c, 'Y').value;
+  }
+  l.known = form == M671Form::Set && !x.maybe;
   l.set = x.id;
 }
 
