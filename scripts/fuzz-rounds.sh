@@ -19,6 +19,9 @@
 # scripts/fuzz.sh; FUZZ_TIMEOUT defaults to 120 s here (a fuzzer starved by other jobs on the machine is slow, not
 # hung).
 set -euo pipefail
+# The whole script is one block, which bash reads to its end before it runs any of it: a script edited while it runs
+# (a round lasts half an hour) would otherwise be read on from the old offset in the new text.
+{
 cd "$(dirname "$0")/.."
 hours=${1:-}
 [[ "$hours" =~ ^[0-9]+([.][0-9]+)?$ ]] || { echo "usage: scripts/fuzz-rounds.sh HOURS [TARGET…]" >&2; exit 2; }
@@ -95,3 +98,4 @@ failed=0
 worker "" || failed=1
 for p in "${pids[@]}"; do wait "$p" || failed=1; done
 exit $failed
+}

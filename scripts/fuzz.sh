@@ -23,6 +23,9 @@
 # per target, default FUZZ_WORK/corpus): the workers of `FUZZ_JOBS=N scripts/fuzz-rounds.sh` each have their own
 # FUZZ_WORK and share one FUZZ_CORPUS.
 set -euo pipefail
+# The whole script is one block, which bash reads to its end before it runs any of it: a script edited while it runs
+# (a round lasts half an hour) would otherwise be read on from the old offset in the new text.
+{
 cd "$(dirname "$0")/.."
 root=$(pwd)
 results=${FUZZ_RESULTS-tests/fuzz/RESULTS.md}
@@ -153,3 +156,4 @@ if [[ -n "$results" ]]; then
   totals | while read -r t n; do echo "fuzz: total $t: $n executions"; done
 fi
 exit $failed
+}
