@@ -59,7 +59,10 @@ void check(const NodeContext& cx, Sink& out) {
   const M671Read r = m671_read(pf, c);
   if (r.form != M671Form::Mismatch && r.form != M671Form::TooLong) return;
   const bool has_x = static_cast<bool>(pf.find(c, 'X')), has_y = static_cast<bool>(pf.find(c, 'Y'));
-  auto positions = [](size_t n, char axis) { return fmt::format("{} {} position{}", n, axis, n == 1 ? "" : "s"); };
+  auto positions = [](size_t n, char axis) {  // n is 0 for a list from an expression
+    return n == 0 ? fmt::format("{} {} list", axis == 'X' ? "an" : "a", axis)
+                  : fmt::format("{} {} position{}", n, axis, n == 1 ? "" : "s");
+  };
   std::string what, answer;
   if (r.form == M671Form::TooLong) {
     what =
