@@ -119,6 +119,9 @@ failed=0
 for t in "${targets[@]}"; do
   mkdir -p "$corpus/$t"
   log="$work/logs/$t.log"
+  # The commit of the binary about to run, read now: a build during the run (FUZZ_NO_BUILD=1 runs what another
+  # build left) would otherwise lend this row the next binary's commit.
+  built_from=$(cat "$build/fuzz_$t.commit" 2>/dev/null || echo "$commit")
   start=$(date +%s)
   status=0
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -149,7 +152,7 @@ for t in "${targets[@]}"; do
   echo "fuzz: $t: ${execs:-?} executions in ${elapsed} s, cov ${cov:-?}, findings: $findings"
   if [[ -n "$results" ]]; then
     printf '| %s | %s | %s | %s | %s | %s | %s |\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$t" "${execs:-?}" "$elapsed" \
-      "${cov:-?}" "$findings" "$(cat "$build/fuzz_$t.commit" 2>/dev/null || echo "$commit")" >>"$results"
+      "${cov:-?}" "$findings" "$built_from" >>"$results"
   fi
 done
 if [[ -n "$results" ]]; then
