@@ -58,23 +58,25 @@ void check(const NodeContext& cx, Sink& out) {
   const Command& c = cx.command();
   const M671Read r = m671_read(pf, c);
   if (r.form != M671Form::Mismatch && r.form != M671Form::TooLong) return;
-  const bool has_x = static_cast<bool>(pf.find(c, 'X')), has_y = static_cast<bool>(pf.find(c, 'Y'));
   auto positions = [](size_t n, char axis) {  // n is 0 for a list from an expression
     return n == 0 ? fmt::format("{} {} list", axis == 'X' ? "an" : "a", axis)
                   : fmt::format("{} {} position{}", n, axis, n == 1 ? "" : "s");
   };
+  const size_t nx = r.x.size(), ny = r.y.size();
   std::string what, answer;
+  char at = 'X';  // the parameter the finding points at
   if (r.form == M671Form::TooLong) {
-    what =
-        fmt::format("{}, more than the 4 RRF allows", r.x > kMaxLeadscrews ? positions(r.x, 'X') : positions(r.y, 'Y'));
+    at = nx > kMaxLeadscrews ? 'X' : 'Y';
+    what = fmt::format("{}, more than the 4 RRF allows", at == 'X' ? positions(nx, 'X') : positions(ny, 'Y'));
     answer = "array too long, max length = 4";
   } else {
-    what = !has_y   ? positions(r.x, 'X') + " and no Y list"
-           : !has_x ? positions(r.y, 'Y') + " and no X list"
-                    : positions(r.x, 'X') + " but " + positions(r.y, 'Y');
+    at = r.has_y ? 'Y' : 'X';
+    what = !r.has_y   ? positions(nx, 'X') + " and no Y list"
+           : !r.has_x ? positions(ny, 'Y') + " and no X list"
+                      : positions(nx, 'X') + " but " + positions(ny, 'Y');
     answer = "Specify 1, 2, 3 or 4 X and Y coordinates in M671";
   }
-  const ParamRef p = pf.find(c, r.form == M671Form::TooLong ? (r.x > kMaxLeadscrews ? 'X' : 'Y') : (has_y ? 'Y' : 'X'));
+  const ParamRef p = pf.find(c, at);
   out.report(kMeta, cx.at(p ? p->span : c.span),
              fmt::format("{} gives {}: RRF answers '{}' and {}", tools::quote(pf, c), what, answer,
                          s.leadscrews.set == kNoNode ? "sets no leadscrews, so G32 cannot level with the Z motors"

@@ -52,15 +52,16 @@ bool m563_defines(const ParsedFile& pf, const Command& c) {
 
 M671Read m671_read(const ParsedFile& pf, const Command& c) {
   M671Read r;
-  const auto X = get_float_list(pf, c, 'X');
-  const auto Y = get_float_list(pf, c, 'Y');
-  if (!X.present() && !Y.present()) return r;
-  if (X.known()) r.x = X.value.size();
-  if (Y.known()) r.y = Y.value.size();
-  if (r.x > kMaxLeadscrews || r.y > kMaxLeadscrews) r.form = M671Form::TooLong;
-  else if (!X.present() || !Y.present()) r.form = M671Form::Mismatch;
+  auto X = get_float_list(pf, c, 'X');
+  auto Y = get_float_list(pf, c, 'Y');
+  r.has_x = X.present(), r.has_y = Y.present();
+  if (!r.has_x && !r.has_y) return r;
+  if (X.known()) r.x = std::move(X.value);
+  if (Y.known()) r.y = std::move(Y.value);
+  if (r.x.size() > kMaxLeadscrews || r.y.size() > kMaxLeadscrews) r.form = M671Form::TooLong;
+  else if (!r.has_x || !r.has_y) r.form = M671Form::Mismatch;
   else if (!X.known() || !Y.known()) r.form = M671Form::Unknown;
-  else r.form = r.x == r.y ? M671Form::Set : M671Form::Mismatch;
+  else r.form = r.x.size() == r.y.size() ? M671Form::Set : M671Form::Mismatch;
   return r;
 }
 

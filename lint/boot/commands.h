@@ -90,7 +90,8 @@ std::optional<int> kinematics_set_by(const ParsedFile& pf, const Command& c, Ver
 enum class M671Form : uint8_t { Other, Set, Unknown, Mismatch, TooLong };
 struct M671Read {
   M671Form form = M671Form::Other;
-  size_t x = 0, y = 0;  // the lengths of the lists (0 when absent or unknown)
+  std::vector<double> x, y;           // the lists (empty when absent or an expression)
+  bool has_x = false, has_y = false;  // the parameter is there (known or not)
 };
 inline constexpr size_t kMaxLeadscrews = 4;
 M671Read m671_read(const ParsedFile& pf, const Command& c);

@@ -121,15 +121,13 @@ void m574(CommandCx& x) {
 }
 
 void m671(CommandCx& x) {
-  const M671Form form = m671_read(x.pf, x.c).form;
-  if (form != M671Form::Set && form != M671Form::Unknown) return;  // a report, S/P/F alone, or refused
+  M671Read r = m671_read(x.pf, x.c);
+  if (r.form != M671Form::Set && r.form != M671Form::Unknown) return;  // a report, S/P/F alone, or refused
   Leadscrews& l = x.s.leadscrews;
   l = Leadscrews{};
-  if (form == M671Form::Set) {
-    l.x = get_float_list(x.pf, x.c, 'X').value;
-    l.y = get_float_list(x.pf, x.c, 'Y').value;
-  }
-  l.known = form == M671Form::Set && !x.maybe;
+  l.x = std::move(r.x);  // empty when Unknown
+  l.y = std::move(r.y);
+  l.known = r.form == M671Form::Set && !x.maybe;
   l.set = x.id;
 }
 
