@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "lint/boot/commands.h"
 #include "lint/engine/rule.h"
 #include "rules/heat_helpers.h"
 
@@ -28,7 +29,9 @@ with `L` or `D`, which switches to linear delta. A note points at that command.
 `M669` without `K`, or with the `K` already in force, only configures the existing kinematics and keeps the
 leadscrews: it is not reported. It stays silent when the kinematics type is unknown (an `M669 K{…}`, or one
 inside an `if`), when the change may not run (inside an `if`), when an `M671` follows the change (the leadscrews
-are set again), inside config-override.g and resurrect.g, and on a lone macro.
+are set again), inside config-override.g and resurrect.g, and on a lone macro. An `M671` that RRF refuses (lists
+of different lengths, or more than four positions: `leadscrew-coordinates` reports it) sets nothing: it is
+neither reported here nor taken as setting the leadscrews again.
 
 ## Why is this bad?
 The leadscrew positions live in the kinematics object. When the type changes, `Move::SetKinematics()` deletes
@@ -71,6 +74,13 @@ std::string kinematics_name(int k) {
   }
 }
 
+/// Does this M671 set the leadscrew positions? Not when it only reports (no X or Y), nor when RRF refuses it (lists
+/// of different lengths or longer than four: leadscrew-coordinates reports those), which sets nothing.
+bool sets_leadscrews(const ParsedFile& pf, const Command& c) {
+  const M671Form form = m671_read(pf, c).form;
+  return form == M671Form::Set || form == M671Form::Unknown;
+}
+
 /// The commands that set a kinematics type (M669 K, M667 S, M665 L/D) and the M671s that set leadscrews, in node
 /// order; built once per graph and firmware. Each M671 used to walk every later node: a config of thousands of
 /// M671s inside `if` blocks and no change of type asked them all for each.
@@ -104,7 +114,7 @@ const KinematicsIndex& kinematics_index(const NodeContext& cx) {
       out.next_other[i - 1] = out.type[i] != out.type[i - 1] ? i : out.next_other[i];
     tools::each_code_command(cx.machine, cx.graph, 'M', 671,
                              [&](NodeId id, const Node& n, const ParsedFile& pf, const Command& c) {
-                               if (!pf.find(c, 'X') && !pf.find(c, 'Y')) return;
+                               if (!sets_leadscrews(pf, c)) return;
                                out.m671.push_back(id);
                                if (!n.maybe) out.m671_certain.push_back(id);
                              });
@@ -118,12 +128,12 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const MachineState& s = cx.state;
   if (!s.kinematics_known || s.unknown_baseline || heat::judged_elsewhere(cx)) return;
-  if (!pf.find(c, 'X') && !pf.find(c, 'Y')) return;  // reports only
+  if (!sets_leadscrews(pf, c)) return;  // reports only, or refused (leadscrew-coordinates)
   const int current = s.kinematics;
   const KinematicsIndex& kin = kinematics_index(cx);
   const NodeId end = cx.segment().end;
   // The first later command that changes the type (one that sets the current type changes nothing), unless a later
-  // M671 (not in an if/while) sets the leadscrews again before it: that one is judged instead.
+  // M671 (not in an if/while, not refused) sets the leadscrews again before it: that one is judged instead.
   size_t at = static_cast<size_t>(std::upper_bound(kin.ids.begin(), kin.ids.end(), cx.id) - kin.ids.begin());
   if (at < kin.ids.size() && kin.type[at] == current) at = kin.next_other[at];
   const NodeId change = at < kin.ids.size() && kin.ids[at] < end ? kin.ids[at] : kNoNode;
