@@ -76,11 +76,13 @@ void check(const NodeContext& cx, Sink& out) {
                       : positions(nx, 'X') + " but " + positions(ny, 'Y');
     answer = "Specify 1, 2, 3 or 4 X and Y coordinates in M671";
   }
+  // None set yet, or a change of kinematics type has dropped them (Leadscrews::dropped).
+  const bool has_none = s.leadscrews.set == kNoNode || (s.leadscrews.dropped != kNoNode && !s.leadscrews.dropped_maybe);
   const ParamRef p = pf.find(c, at);
   out.report(kMeta, cx.at(p ? p->span : c.span),
              fmt::format("{} gives {}: RRF answers '{}' and {}", tools::quote(pf, c), what, answer,
-                         s.leadscrews.set == kNoNode ? "sets no leadscrews, so G32 cannot level with the Z motors"
-                                                     : "keeps the leadscrew positions of the M671 before it"));
+                         has_none ? "sets no leadscrews, so G32 cannot level with the Z motors"
+                                  : "keeps the leadscrew positions of the M671 before it"));
 }
 
 }  // namespace
