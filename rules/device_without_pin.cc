@@ -78,7 +78,7 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   if (pf.find(c, 'C')) return;
-  const char letter = m950_device(pf, c, s.firmware);
+  const char letter = m950_device(pf, c, s.firmware, s.board);
   if (letter != 'H' && letter != 'F') return;
   const auto v = get_int(pf, c, letter);
   if (!v.known() || v.value < 0) return;

@@ -78,11 +78,12 @@ bool has_leadscrews(int kinematics) {
   }
 }
 
-char m950_device(const ParsedFile& pf, const Command& c, Version fw) {
+char m950_device(const ParsedFile& pf, const Command& c, Version fw, Board board) {
+  const Version every_board = Version::beta(3, 5, 0, 4);
+  const bool reads_d = fw >= every_board || (fw >= kRrf3_4 && (board == Board::Duet3_6HC || board == Board::Unknown));
   char which = 0;
   for (char L : {'D', 'E', 'R', 'J', 'F', 'H', 'P', 'S'}) {
-    if (!pf.find(c, L) || (L == 'R' && fw < kRrf3_3) || (L == 'D' && fw < kRrf3_4) ||
-        (L == 'E' && fw < Version::beta(3, 5, 0, 4)))
+    if (!pf.find(c, L) || (L == 'R' && fw < kRrf3_3) || (L == 'D' && !reads_d) || (L == 'E' && fw < every_board))
       continue;
     if (which) return 0;
     which = L;

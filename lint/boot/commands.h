@@ -101,9 +101,10 @@ M671Read m671_read(const ParsedFile& pf, const Command& c);
 bool has_leadscrews(int kinematics);
 
 /// The one device letter of an M950 (Platform::ConfigurePort: "exactly one of FHJPSR must be given"): J, F, H, P, S,
-/// and from the version that reads them R (spindles, 3.3), D (SD card, 3.4; the 6HC's only until 3.5.0-beta.4, not
-/// told apart here) and E (LED strip, 3.5.0-beta.4); 0 when it has none or several.
-char m950_device(const ParsedFile& pf, const Command& c, Version fw);
+/// and from the version that reads them R (spindles, 3.3), D (SD card: the 6HC's from 3.4, every board's from
+/// 3.5.0-beta.4; an unknown board is taken to read it) and E (LED strip, 3.5.0-beta.4); 0 when it has none or
+/// several. (The 6XD, which rrflint counts as a 6HC, had no D before 3.5.0-beta.4 either.)
+char m950_device(const ParsedFile& pf, const Command& c, Version fw, Board board);
 
 /// One pin as RRF looks it up (IoPort::RemoveBoardAddress, IoPort::Allocate, GCodeBuffer::GetReducedString): `key`
 /// is "<board>.<name>", the name lowercased without '_' or '-' and without the '!', '^', '*' flags, the board 0 (the

@@ -299,7 +299,7 @@ void do_m950(Cx& x) {
     map[n] = d;
   };
   // Exactly one device letter (m950_device); J, P, S, R, D and E are the ports' (model_devices.cc).
-  const char letter = m950_device(x.pf, x.c, s.firmware);
+  const char letter = m950_device(x.pf, x.c, s.firmware, s.board);
   if (letter == 'H')
     device('H', s.heaters, s.heaters_known, [&] {
       Heater h;

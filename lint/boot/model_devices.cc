@@ -116,7 +116,7 @@ std::string pin_text(const Val<std::string>& pin) { return pin.known() ? pin.val
 
 // M950 with exactly one device letter (Platform::ConfigurePort): J, P, S or R (3.3+) here; H and F elsewhere.
 void m950_port(CommandCx& x) {
-  const char which = m950_device(x.pf, x.c, x.s.firmware);
+  const char which = m950_device(x.pf, x.c, x.s.firmware, x.s.board);
   if (!which || std::string_view("JPSR").find(which) == std::string_view::npos) return;
   const PortKind kind = which == 'J'   ? PortKind::GpioIn
                         : which == 'P' ? PortKind::GpioOut

@@ -81,7 +81,7 @@ void m950(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
   static constexpr std::pair<char, const char*> kDevices[] = {
       {'D', "SD card"}, {'E', "LED strip"}, {'R', "spindle"},     {'J', "GPIO input"},
       {'F', "fan"},     {'H', "heater"},    {'P', "GPIO output"}, {'S', "servo"}};
-  const char which = m950_device(pf, c, s.firmware);
+  const char which = m950_device(pf, c, s.firmware, s.board);
   const char* kind = nullptr;
   for (const auto& [L, name] : kDevices)
     if (L == which) kind = name;
