@@ -112,6 +112,36 @@ TEST_CASE("text: a note in another file has that file's name and snippet; carets
         "https://example.org/rrflint/rules/tool-select-runs-macros-at-boot.md\n");
 }
 
+TEST_CASE("text: the fix preview shows every line the fixed line becomes, and a removed line", "[cli]") {
+  SourceManager sm;
+  const SourceFile& cfg = sm.add("p/sys/config.g", "/sys/config.g", "M569 P0:1 S1\r\n; a\r\n; b\r\nG28\r\n");
+  auto preview = [&](std::vector<Edit> edits) {
+    Diagnostic d;
+    d.code = "RRF220";
+    d.name = "m569-driver-list";
+    d.loc = Location{cfg.id(), Span{0, 4}};
+    d.message = "m";
+    Fix f;
+    f.title = "t";
+    f.edits = std::move(edits);
+    d.fix = f;
+    std::ostringstream os;
+    render_text(os, sm, {d}, RenderOptions{});
+    const std::string out = os.str();
+    const size_t from = out.find("(--fix)\n") + 8;
+    return out.substr(from, out.find("\n\n", from) - from);
+  };
+  auto at = [&](uint32_t b, uint32_t e) { return Location{cfg.id(), Span{b, e}}; };
+  // One line split into two (CRLF kept in the file, not shown).
+  CHECK(preview({Edit{at(0, 12), "M569 P0 S1\r\nM569 P1 S1"}}) == " 1 + M569 P0 S1\n 2 + M569 P1 S1");
+  // A removed line (with its terminator) is shown as it was.
+  CHECK(preview({Edit{at(0, 14), ""}}) == " 1 - M569 P0:1 S1");
+  // An edit that inserts at the start of the next line takes that whole line in.
+  CHECK(preview({Edit{at(14, 14), "  "}, Edit{at(19, 19), "  "}}) == " 2 +   ; a\n 3 +   ; b");
+  // Many lines: the first three, then how many more.
+  CHECK(preview({Edit{at(0, 12), "A\nB\nC\nD\nE\nF"}}) == " 1 + A\n 2 + B\n 3 + C\n 4 + … (3 more lines)");
+}
+
 TEST_CASE("text: a span that starts or ends inside a character marks the whole character", "[cli]") {
   // RRF102 marks a long line from its 256th byte, which can fall inside a character: here 2 bytes into the
   // 4-byte emoji. The snippet once showed the emoji as four U+FFFD, and its columns came out backwards.

@@ -136,10 +136,18 @@ std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix) {
   if (f.line_count() == 0) return std::nullopt;
   const uint32_t line0 = f.line_of(std::min(edits.front().loc.span.begin, f.size()));
   const Span ls = f.line_span(line0);
-  // The line with its terminator, plus whatever the edits that start on it reach into.
+  // The line with its terminator, plus the whole lines (with their terminators) that the edits starting on it, or on
+  // a line taken in so far, reach into: an insertion at the next line's start takes in that line.
+  auto through_line_of = [&](uint32_t off) {
+    const uint32_t l = f.line_of(std::min(off, f.size()));
+    return f.line_span(l).end + static_cast<uint32_t>(f.terminator(l).size());
+  };
   uint32_t end = ls.end + static_cast<uint32_t>(f.terminator(line0).size());
-  for (const Edit& e : edits)
-    if (e.loc.span.begin <= end) end = std::max(end, std::min(e.loc.span.end, f.size()));
+  for (const Edit& e : edits) {
+    const Span s = e.loc.span;
+    if (s.begin > end || s.end < s.begin) continue;
+    end = std::max(end, through_line_of(s.end > s.begin ? s.end - 1 : s.begin));
+  }
   std::string region(f.text().substr(ls.begin, end - ls.begin));
   // Apply back to front so earlier offsets stay valid.
   for (auto it = edits.rbegin(); it != edits.rend(); ++it) {
@@ -153,8 +161,14 @@ std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix) {
     p.removed = true;
     return p;
   }
-  const size_t nl = region.find_first_of("\r\n");
-  p.text = region.substr(0, nl);
+  // Split at LF, CRLF and lone CR; the piece after the region's last terminator is not a line.
+  size_t at = 0;
+  while (at < region.size()) {
+    const size_t nl = region.find_first_of("\r\n", at);
+    p.lines.push_back(region.substr(at, nl == std::string::npos ? std::string::npos : nl - at));
+    if (nl == std::string::npos) break;
+    at = nl + (region[nl] == '\r' && nl + 1 < region.size() && region[nl + 1] == '\n' ? 2 : 1);
+  }
   return p;
 }
 

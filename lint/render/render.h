@@ -124,10 +124,12 @@ std::string sanitize(std::string_view s);
 std::string valid_utf8(std::string_view s);
 
 /// The source line of an edit's start after applying the fix's edits to it (for the `help:` preview), with its
-/// 1-based line number; nullopt when the fix has no edit in a known file. Empty text: the line is removed.
+/// 1-based line number; nullopt when the fix has no edit in a known file. `lines`: what that line (and any line an
+/// edit starting on it reaches into) becomes, one entry per line: two or more when the fix splits it. `removed`:
+/// the line is gone.
 struct FixPreview {
   uint32_t line = 0;
-  std::string text;
+  std::vector<std::string> lines;
   bool removed = false;
 };
 std::optional<FixPreview> fix_preview(const SourceManager& sm, const Fix& fix);

@@ -99,20 +99,26 @@ void render_text(std::ostream& os, const SourceManager& sm, const std::vector<Di
     if (d.fix) {
       os << "  " << st("help:", "1;32") << " " << sanitize(d.fix->title)
          << (d.fix->applicability == Applicability::Unsafe ? " (unsafe fix: --unsafe-fixes)" : " (--fix)") << "\n";
-      // A one-line preview of the fixed line, diff-style: `+` the line after the fix, `-` a line it removes.
+      // A preview of the fixed line, diff-style: `+` the line (or the lines it is split into) after the fix, `-` a
+      // line it removes. At most kShown lines, then how many more.
       if (auto p = fix_preview(sm, *d.fix)) {
         const SourceFile& f = sm.get(d.fix->edits.front().loc.file);
-        std::string shown = p->removed ? std::string(f.slice(f.line_span(p->line - 1))) : p->text;
-        std::string t = sanitize(shown);
-        for (char& c : t)
-          if (c == '\t') c = ' ';
-        if (t.size() > 200) {
-          size_t cut = 200;
-          while (cut > 0 && (static_cast<unsigned char>(t[cut]) & 0xC0) == 0x80) --cut;
-          t = t.substr(0, cut) + "…";
+        std::vector<std::string> shown = p->lines;
+        if (p->removed) shown = {std::string(f.slice(f.line_span(p->line - 1)))};
+        constexpr size_t kShown = 4;
+        for (size_t i = 0; i < shown.size() && i < kShown; ++i) {
+          std::string t = sanitize(shown[i]);
+          for (char& c : t)
+            if (c == '\t') c = ' ';
+          if (t.size() > 200) {
+            size_t cut = 200;
+            while (cut > 0 && (static_cast<unsigned char>(t[cut]) & 0xC0) == 0x80) --cut;
+            t = t.substr(0, cut) + "…";
+          }
+          if (i + 1 == kShown && shown.size() > kShown) t = fmt::format("… ({} more lines)", shown.size() - i);
+          os << " " << st(std::to_string(p->line + i) + (p->removed ? " -" : " +"), p->removed ? "1;31" : "1;32") << " "
+             << st(t, p->removed ? "31" : "32") << "\n";
         }
-        os << " " << st(std::to_string(p->line) + (p->removed ? " -" : " +"), p->removed ? "1;31" : "1;32") << " "
-           << st(t, p->removed ? "31" : "32") << "\n";
       }
     }
     os << "\n";
