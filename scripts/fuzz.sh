@@ -90,7 +90,7 @@ if [[ "${FUZZ_NO_BUILD:-}" == 1 ]]; then
   done
 else
   cmake -S "$src" -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON "${launcher[@]}" >/dev/null
+    -DRRFLINT_FUZZ=ON -DBUILD_TESTING=OFF -DRRFLINT_WERROR=ON -DRRFLINT_PCH=ON "${launcher[@]}" >/dev/null
   cmake --build "$build" -j"$(nproc)" --target "${targets[@]/#/fuzz_}"
   for t in "${targets[@]}"; do echo "$commit" >"$build/fuzz_$t.commit"; done
 fi

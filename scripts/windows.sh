@@ -21,8 +21,10 @@ done
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 start=$SECONDS
+# -O2, as the .deb is built (CMake's Release would be -O3), and the standard and fmt headers precompiled: together
+# 418 s instead of 503 s for this build on two cores (session 23).
 cmake -S . -B "$BUILD" -DCMAKE_TOOLCHAIN_FILE="$src/cmake/mingw-w64.cmake" -DCMAKE_BUILD_TYPE=Release \
-  -DBUILD_TESTING=OFF "${launcher[@]}" >/dev/null
+  -DCMAKE_CXX_FLAGS_RELEASE="-O2 -DNDEBUG" -DRRFLINT_PCH=ON -DBUILD_TESTING=OFF "${launcher[@]}" >/dev/null
 cmake --build "$BUILD" -j"$(nproc)" --target rrflint
 echo "windows: cross build $((SECONDS - start)) s"
 version=$(sed -n 's/^project(rrflint VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)

@@ -58,7 +58,7 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 compiler=()
 [ -n "$cxx" ] && compiler=(-DCMAKE_CXX_COMPILER="$cxx")
 cmake -S "$scratch" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 -DRRFLINT_WERROR=ON \
-  -DBUILD_TESTING=ON "${launcher[@]}" "${compiler[@]}" >/dev/null
+  -DBUILD_TESTING=ON -DRRFLINT_PCH=ON "${launcher[@]}" "${compiler[@]}" >/dev/null
 cmake --build "$scratch/build" -j2 --target rrflint rrflint_tests
 cmake --build "$scratch/build" --target rrflint_docs >/dev/null
 # The guide's next step: the snapshot of the new rules' findings (fixtures/<name>/snapshot.txt).
