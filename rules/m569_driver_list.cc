@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lint/engine/rule.h"
+#include "rules/append_fix.h"
 #include "rules/lex_common.h"
 #include "rules/tool_helpers.h"
 
@@ -50,7 +51,7 @@ M569 P2 S0 D3
 ## Fix safety
 The fix writes one `M569` per driver, each with the other parameters of the line, on lines of their own with the
 same indentation. It is unsafe: the drivers after the first are configured only once it is applied. There is no
-fix when the line holds another command.
+fix when the line holds another command, or does not parse whole (an unterminated string or `{`).
 
 ## References
 - rrflint: [M569 per driver](../firmware-behaviour.md#axes-and-m584)
@@ -79,9 +80,10 @@ void check(const NodeContext& cx, Sink& out) {
                             P.value[0].str(), rest);
   Report r = out.report(kMeta, cx.at(P.param->span),
                         fmt::format("{} {}; give each driver its own M569", tools::quote(pf, c), what));
-  // The fix: one M569 per driver, on lines of their own, when the command is alone on its line.
+  // The fix: one M569 per driver, on lines of their own, when the command is alone on its line and parses whole
+  // (each copy of an unterminated string, or of an expression a ';' cuts open, would be a new syntax error).
   const Line& line = pf.lines[c.line];
-  if (line.command_count != 1) return;
+  if (line.command_count != 1 || !tools::parses_whole(pf, c)) return;
   const SourceFile& src = *cx.unit().source;
   std::string terminator(src.terminator(src.line_of(line.span.begin)));
   if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";

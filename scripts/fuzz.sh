@@ -142,7 +142,13 @@ for t in "${targets[@]}"; do
     [[ -n "$artifact" ]] && findings="${artifact#"$root"/}"
     failed=1
     echo "fuzz: $t FOUND SOMETHING (exit $status): $findings" >&2
-    grep -m3 -E 'ERROR|SUMMARY|ALARM|runtime error|deadly signal|out-of-memory' "$log" >&2 || true
+    # The report and the input itself, so that a finding on a machine whose files are gone (CI) can be replayed:
+    # `base64 -d > crash && build-fuzz/fuzz_TARGET crash`.
+    sed -n -E '/ERROR|ALARM|runtime error|out-of-memory/,+24p' "$log" | head -40 >&2 || true
+    if [[ -n "$artifact" && -f "$artifact" ]]; then
+      echo "fuzz: the input, $(wc -c <"$artifact") bytes, base64 (the first 12 KB):" >&2
+      head -c 12288 "$artifact" | base64 -w 120 >&2
+    fi
   elif [[ -z "$execs" ]]; then
     echo "fuzz: $t: no statistics in $log" >&2
     failed=1

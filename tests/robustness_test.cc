@@ -675,6 +675,16 @@ TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "
   REQUIRE(r.diagnostics.size() == 1);
   CHECK(r.diagnostics[0].code == "RRF307");
   CHECK_FALSE(r.diagnostics[0].fix);
+  // RRF220's one M569 per driver copied an unterminated string (`C"driver`) or an expression a ';' cuts open onto
+  // every new line (found by the CI's fuzz smoke): a new syntax error per driver. The M569 after them keeps its fix.
+  SourceManager sm3;
+  r = lint_one_rule(sm3, "M584 X0 Y1 Z2:3 E4\nM569 P0.2:0.3 S1 C\"driver\nM569 P0:1 S{1 ; note\nM569 P2:3 S1\n",
+                    "RRF220");
+  REQUIRE(r.diagnostics.size() == 3);
+  CHECK_FALSE(r.diagnostics[0].fix);
+  CHECK_FALSE(r.diagnostics[1].fix);
+  REQUIRE(r.diagnostics[2].fix);
+  CHECK(r.diagnostics[2].fix->title == "write one M569 per driver (2)");
 }
 
 TEST_CASE("no fix edits inside a line whose checksum it would break", "[robustness][fix]") {
