@@ -143,9 +143,6 @@ std::vector<std::string> unconfigured_in(const NodeContext& cx, NodeId begin, No
   return out;
 }
 
-/// Does node `id` certainly run here: outside if/while (here and in its callers), not in a tool-change macro?
-bool certain(const Graph& g, NodeId id) { return !g.nodes[id].maybe && !tools::in_tool_macro(g, id); }
-
 /// For each M569 of the graph that configures one known driver, the M569 before it that a look back stops at: the
 /// last earlier one that names the same driver (alone or in a list) or an unknown one; kNoNode when none. Built once
 /// per graph (Graph::derived): a look back from each M569 would cost the square of their number on a config of
@@ -189,7 +186,7 @@ const std::vector<std::string>& unconfigured(const NodeContext& cx) {
 void check(const NodeContext& cx, Sink& out) {
   if (!cx.is('M', 569)) return;
   const MachineState& s = cx.state;
-  if (s.unknown_baseline || !certain(cx.graph, cx.id) || heat::judged_elsewhere(cx)) return;
+  if (s.unknown_baseline || !tools::certain_at_boot(cx.graph, cx.id) || heat::judged_elsewhere(cx)) return;
   const ParsedFile& pf = cx.parsed();
   const Command& c = cx.command();
   const std::optional<DriverId> driver = driver_of(pf, c);
@@ -200,7 +197,7 @@ void check(const NodeContext& cx, Sink& out) {
   const auto it = std::lower_bound(index.ids.begin(), index.ids.end(), cx.id);
   if (it == index.ids.end() || *it != cx.id) return;
   const NodeId prev = index.stop[static_cast<size_t>(it - index.ids.begin())];
-  if (prev == kNoNode || prev < cx.segment().begin || !certain(cx.graph, prev) ||
+  if (prev == kNoNode || prev < cx.segment().begin || !tools::certain_at_boot(cx.graph, prev) ||
       heat::judged_elsewhere(cx.machine, cx.graph, prev))
     return;
   const tools::NodeCommand k = tools::command_at(cx.machine, cx.graph, prev);

@@ -103,9 +103,6 @@ Monitor monitor_of(const ParsedFile& pf, const Command& c, int own_sensor) {
   return m;
 }
 
-/// Does node `id` certainly run: outside if/while here and in its callers, and not in a tool-change macro?
-bool certain(const Graph& g, NodeId id) { return !g.nodes[id].maybe && !tools::in_tool_macro(g, id); }
-
 std::string action_name(int a) {
   switch (a) {
     case 0: return "0 (heater fault)";
@@ -163,7 +160,7 @@ NodeId earlier_m143(const NodeContext& cx, const Monitor& m, int own_sensor, Nod
                                      return false;
                                    if (o.kind == Monitor::Kind::Unknown || o.slot != m.slot)
                                      return o.kind == Monitor::Kind::Unknown;
-                                   if (certain(cx.graph, id) && !judged_elsewhere(cx, id)) {
+                                   if (tools::certain_at_boot(cx.graph, id) && !judged_elsewhere(cx, id)) {
                                      found = id;
                                      old = o;
                                    }

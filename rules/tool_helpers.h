@@ -246,6 +246,10 @@ inline bool in_tool_macro(const Graph& g, NodeId id) {
   return false;
 }
 
+/// Does node `id` certainly run when config.g runs: outside if/while (here and in its callers), and not in a
+/// tool-change macro?
+inline bool certain_at_boot(const Graph& g, NodeId id) { return !g.nodes[id].maybe && !in_tool_macro(g, id); }
+
 /// RRF's answer to a G10 for a tool that does not exist (docs/firmware-behaviour.md#g10-forms).
 inline std::string invalid_tool_text(Version v, int n) {
   if (v >= kRrf3_4) return "Invalid tool number";
