@@ -114,7 +114,8 @@ std::vector<std::string> unconfigured_in(const NodeContext& cx, NodeId begin, No
   bool unknown = false;
   tools::each_code_node(cx, begin, end, 'M', 569, [&](NodeId id, const tools::NodeCommand& k) {
     const auto P = get_driver_list(*k.pf, *k.c, 'P');
-    if (P.known()) configured.insert(configured.end(), P.value.begin(), P.value.end());
+    // A list configures its first driver only (RRF220 m569-driver-list).
+    if (P.known() && !P.value.empty()) configured.push_back(P.value[0]);
     unknown |= P.unknown() || cx.graph.nodes[id].maybe;
     return unknown;
   });
@@ -175,8 +176,8 @@ const M569Index& m569_index(const NodeContext& cx) {
 }
 
 /// The drivers that the axes and extruders of a segment's M584s use (X, Y and Z default to 0, 1 and 2) and that
-/// no M569 of the segment configures, as "0 (X)"; empty when an M584 or M569 may not run or names an unknown one.
-/// Built once per segment.
+/// no M569 of the segment configures (one with a list configures its first driver only), as "0 (X)"; empty when an
+/// M584 or M569 may not run or names an unknown one. Built once per segment.
 const std::vector<std::string>& unconfigured(const NodeContext& cx) {
   const NodeId begin = cx.segment().begin, end = cx.segment().end;
   return cx.graph.derived<std::vector<std::string>>(fmt::format("driver_setting_replaced.unconfigured.{}", begin),
