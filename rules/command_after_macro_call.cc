@@ -61,7 +61,6 @@ bool runs_macro(const Command& c) {
 
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
-  const SourceFile& src = cx.source();
   // The commands that run a macro and have another command after them on their line, in file order.
   std::vector<uint32_t> found;
   constexpr std::pair<char, int> kMacroCodes[] = {{'T', -1}, {'M', 98}, {'G', 28}, {'G', 29}, {'G', 32}};
@@ -79,12 +78,8 @@ void check(const FileContext& cx, Sink& out) {
     const uint32_t last = line.first_command + line.command_count - 1;
     const Command& next = pf.commands[i + 1];
     const Span rest{next.span.begin, pf.commands[last].span.end};
-    const uint32_t line0 = src.line_of(line.span.begin);
-    std::string terminator(src.terminator(line0));
-    if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
     Fix fix = Fix::unsafe(fmt::format("move '{}' to a line of its own", clip(pf.text(rest), 30)),
-                          Edit::replace(cx.at(Span{c.span.end, next.span.begin}),
-                                        terminator + std::string(pf.text(lex::indentation(pf, line)))));
+                          Edit::replace(cx.at(Span{c.span.end, next.span.begin}), lex::new_line_after(pf, line)));
     const std::string why = c.letter == 'T'
                                 ? std::string("may not be executed: a 'T' command must be alone on its line")
                                 : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",

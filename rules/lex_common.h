@@ -35,6 +35,15 @@ inline Span indentation(const ParsedFile& pf, const Line& line) {
   return Span{line.span.begin, e};
 }
 
+/// What a fix writes before text it puts on a line of its own after `line`: the line's own line ending (at the end
+/// of a file without one, the file's usual one), then the line's indentation.
+inline std::string new_line_after(const ParsedFile& pf, const Line& line) {
+  const SourceFile& src = *pf.source;
+  std::string out(src.terminator(src.line_of(line.span.begin)));
+  if (out.empty()) out = src.endings().crlf > 0 ? "\r\n" : "\n";
+  return out + std::string(pf.text(indentation(pf, line)));
+}
+
 /// Calls `f(offset)` for every character of `s` that is outside quoted strings and `{…}` expressions, the way
 /// RRF's Seen() walks a command. `f` returns false to stop.
 template <class F>

@@ -84,16 +84,13 @@ void check(const NodeContext& cx, Sink& out) {
   // (each copy of an unterminated string, or of an expression a ';' cuts open, would be a new syntax error).
   const Line& line = pf.lines[c.line];
   if (line.command_count != 1 || !tools::parses_whole(pf, c)) return;
-  const SourceFile& src = *cx.unit().source;
-  std::string terminator(src.terminator(src.line_of(line.span.begin)));
-  if (terminator.empty()) terminator = src.endings().crlf > 0 ? "\r\n" : "\n";
   const std::string_view text = pf.source->text();
   const std::string before(text.substr(c.span.begin, P.param->span.begin - c.span.begin));
   const std::string after(text.substr(P.param->span.end, c.span.end - P.param->span.end));
-  const std::string indent(pf.text(lex::indentation(pf, line)));
+  const std::string new_line = lex::new_line_after(pf, line);
   std::string lines;
   for (size_t i = 0; i < P.value.size(); ++i)
-    lines += (i ? terminator + indent : std::string()) + before + "P" + P.value[i].str() + after;
+    lines += (i ? new_line : std::string()) + before + "P" + P.value[i].str() + after;
   r.fix(
       Fix::unsafe(fmt::format("write one M569 per driver ({})", P.value.size()), Edit::replace(cx.at(c.span), lines)));
 }
