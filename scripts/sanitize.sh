@@ -7,6 +7,11 @@
 #
 #   scripts/sanitize.sh          (SANITIZE_BUILD_DIR: the build folder, default build-asan)
 #
+# SANITIZE_FUZZ=1 (clang only) also builds the libFuzzer targets in this folder, for `FUZZ_BUILD_DIR=build-asan
+# FUZZ_NO_BUILD=1 scripts/fuzz.sh` (.ci/run's fuzz smoke): the core is then compiled once with the coverage
+# instrumentation libFuzzer needs as well as the sanitizers (RRFLINT_FUZZ), instead of again in a fuzz build of its
+# own. The suite runs on that core: the instrumentation calls no-op hooks outside a fuzz target.
+#
 # Left out, as they test nothing under the sanitizers and scripts/test.sh runs them: `scaffold`, which builds a
 # scratch copy of the sources of its own (not sanitized); `windows`, which cross-builds and runs rrflint.exe under
 # wine; `vscode`, the TypeScript extension's build and tests (npm).
@@ -30,10 +35,15 @@ fi
 debug=-gline-tables-only
 [[ $("$cxx" --version) == *clang* ]] || debug=-g1
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+fuzz=OFF
+if [[ "${SANITIZE_FUZZ:-}" == 1 ]]; then
+  [[ $("$cxx" --version) == *clang* ]] || { echo "sanitize: SANITIZE_FUZZ=1 needs clang (libFuzzer)" >&2; exit 2; }
+  fuzz=ON
+fi
 start=$(date +%s)
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 $debug" -DRRFLINT_WERROR=OFF -DBUILD_TESTING=ON -DCMAKE_CXX_FLAGS="$flags" \
-  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DRRFLINT_PCH=ON "${launcher[@]}" >/dev/null
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DRRFLINT_PCH=ON -DRRFLINT_FUZZ=$fuzz "${launcher[@]}" >/dev/null
 cmake --build "$build" -j"$(nproc)"
 built=$(date +%s)
 
