@@ -32,12 +32,14 @@ cxx=$(command -v "$cxx")
 if [[ -f "$build/CMakeCache.txt" ]] && ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=$cxx" "$build/CMakeCache.txt"; then
   rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
 fi
+clang=0
+[[ $("$cxx" --version) == *clang* ]] && clang=1
 debug=-gline-tables-only
-[[ $("$cxx" --version) == *clang* ]] || debug=-g1
+((clang)) || debug=-g1
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 fuzz=OFF
 if [[ "${SANITIZE_FUZZ:-}" == 1 ]]; then
-  [[ $("$cxx" --version) == *clang* ]] || { echo "sanitize: SANITIZE_FUZZ=1 needs clang (libFuzzer)" >&2; exit 2; }
+  ((clang)) || { echo "sanitize: SANITIZE_FUZZ=1 needs clang (libFuzzer)" >&2; exit 2; }
   fuzz=ON
 fi
 start=$(date +%s)
