@@ -74,12 +74,13 @@ void check(const NodeContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   const Command c = cx.command();
   for (const PinChange& ch : pin_changes(pf, c, s)) {
-    if (ch.device.empty() || !ch.pins_known || !ch.param) continue;
+    if (!ch.device.known() || !ch.pins_known || !ch.param) continue;
     const auto clash = pin_clash(s, ch);
     if (!clash || (clash->holder && clash->holder->maybe)) continue;
     const PinName& p = ch.pins[clash->index];
+    const std::string device = ch.device.name();
     const std::string answer =
-        fmt::format("RRF answers \"Pin '{}' is not free\" and does not set up {}", bare(p), ch.device);
+        fmt::format("RRF answers \"Pin '{}' is not free\" and does not set up {}", bare(p), device);
     if (!clash->holder) {
       out.report(kMeta, cx.at(ch.param->span),
                  fmt::format("{} names pin \"{}\" twice: {}", tools::quote(pf, c), p.written, answer));
@@ -87,9 +88,9 @@ void check(const NodeContext& cx, Sink& out) {
     }
     const PinOwner& h = *clash->holder;
     out.report(kMeta, cx.at(ch.param->span),
-               fmt::format("{} gives pin \"{}\" to {}, but {} holds it: {}", tools::quote(pf, c), p.written, ch.device,
-                           h.device, answer))
-        .note(cx.where(h.at), fmt::format("{} takes pin \"{}\" here", h.device, h.written));
+               fmt::format("{} gives pin \"{}\" to {}, but {} holds it: {}", tools::quote(pf, c), p.written, device,
+                           h.device.name(), answer))
+        .note(cx.where(h.at), fmt::format("{} takes pin \"{}\" here", h.device.name(), h.written));
   }
 }
 

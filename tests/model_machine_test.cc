@@ -329,12 +329,12 @@ TEST_CASE("model: the pins devices hold", "[model]") {
       "M574 X1 S1 P\"io0.in\"\nM558 P5 C\"^io1.in\" H5\nM591 D0 P1 C\"io2.in\"\nM950 J0 C\"io3.in\"\n");
   const MachineState& s = r->end();
   REQUIRE(s.pins.size() == 8);
-  CHECK(s.pins.at("0.temp1").device == "sensor 1");
-  CHECK(s.pins.at("0.out1").device == "heater 1");
-  CHECK(s.pins.at("1.out2.tach").device == "fan 0");  // on the first pin's board
-  CHECK(s.pins.at("0.io0.in").device == "the X endstop");
+  CHECK(s.pins.at("0.temp1").device.name() == "sensor 1");
+  CHECK(s.pins.at("0.out1").device.name() == "heater 1");
+  CHECK(s.pins.at("1.out2.tach").device.name() == "fan 0");  // on the first pin's board
+  CHECK(s.pins.at("0.io0.in").device.name() == "the X endstop");
   CHECK(s.pins.at("0.io1.in").written == "^io1.in");
-  CHECK(s.pins.at("0.io2.in").device == "filament monitor 0");
+  CHECK(s.pins.at("0.io2.in").device.name() == "filament monitor 0");
   CHECK(r->word(s.pins.at("0.io3.in").at) == "M950 J0 C\"io3.in\"");
   // Given back: re-created elsewhere, deleted, another endstop type; a refused device takes no pin at all.
   CHECK(config("M950 H1 C\"out1\" T1\nM950 H1 C\"out2\" T1\n")->end().pins.count("0.out1") == 0);
@@ -348,7 +348,7 @@ TEST_CASE("model: the pins devices hold", "[model]") {
   // A pin a maybe-holder may hold is taken (maybe) by the next device; the first one giving its pins back later
   // does not free it.
   auto mh = config(kUnknownIf + "  M950 F0 C\"out1\"\nendif\nM950 F1 C\"out1\"\nM950 F0 C\"nil\"\n");
-  CHECK(mh->end().pins.at("0.out1").device == "fan 1");
+  CHECK(mh->end().pins.at("0.out1").device.name() == "fan 1");
   CHECK(mh->end().pins.at("0.out1").maybe);
   CHECK(config("M558 P5 C\"zprobe.in\"\n", Version(2, 5, 0))->end().pins.empty());
   // rrflint model shows them.

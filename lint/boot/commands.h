@@ -120,7 +120,7 @@ PinName pin_name(std::string_view written);
 /// holds (a device re-created, deleted, or given new pins), then it takes `pins`, all or none: a pin held by another
 /// device ("Pin 'x' is not free") makes RRF give back the ones it took and leaves the device without pins.
 struct PinChange {
-  std::string device;  // "heater 1", "fan 0", "sensor 2", "Z probe 0", "the X endstop", "the laser"…; "" when unknown
+  PinDevice device;           // unknown (PinDevice::Kind::Unknown) when its number is an expression
   std::vector<PinName> pins;  // "nil" left out; empty: the device only gives its pins back
   ParamRef param;             // the parameter that names the pins (none for a change without pins)
   bool pins_known = true;     // false: the pins are an expression (the old ones are given back all the same)
@@ -128,7 +128,7 @@ struct PinChange {
 
 /// The pin changes of an M950 (C), M308 (P), M558 (C), M574 (P), M591 (C) or M452 (C) on RRF 3; empty for other
 /// commands, reports, and commands RRF rejects before it touches a pin. A device from an expression (`H{…}`) gives
-/// one change with an empty `device`: any device's pins may have changed.
+/// one change with an unknown `device`: any device's pins may have changed.
 std::vector<PinChange> pin_changes(const ParsedFile& pf, const Command& c, const MachineState& s);
 
 /// The first pin of `ch` that RRF refuses: held by another device (`holder`), or named twice in `ch` (no holder).

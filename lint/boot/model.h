@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "lint/boot/firmware.h"
@@ -201,11 +202,45 @@ struct Tool {
   bool maybe = false;                // created inside a conditional block (it may not exist)
 };
 
-/// The device holding a pin (MachineState::pins, lint/boot/pins.cc): "heater 1", "the X endstop"…
+/// A device that takes pins (lint/boot/pins.cc): its kind and number, compared as numbers on the forward pass and
+/// named only for a message ("heater 1", "the X endstop").
+struct PinDevice {
+  enum class Kind : uint8_t {
+    Unknown,  // from an expression: any device's pins may have changed
+    SdCard,
+    LedStrip,
+    Spindle,
+    GpioIn,
+    Fan,
+    Heater,
+    GpioOut,
+    Servo,
+    Sensor,
+    ZProbe,
+    Endstop,  // `number` is the axis letter
+    FilamentMonitor,
+    Laser,
+  };
+  Kind kind = Kind::Unknown;
+  int64_t number = 0;
+
+  bool known() const { return kind != Kind::Unknown; }
+  std::string name() const;  // "heater 1", "sensor 2", "Z probe 0", "the X endstop", "the laser"…
+  friend bool operator==(const PinDevice&, const PinDevice&) = default;
+};
+
+struct PinDeviceHash {
+  size_t operator()(const PinDevice& d) const noexcept {
+    return std::hash<uint64_t>()(static_cast<uint64_t>(d.number) * 16 + static_cast<uint64_t>(d.kind));
+  }
+};
+
+/// The device holding a pin (MachineState::pins, lint/boot/pins.cc).
 struct PinOwner {
-  std::string device, written;  // the pin as that device's command wrote it
-  NodeId at = kNoNode;          // the command that gave it the pin
-  bool maybe = false;           // that command may not have run, or the pin may have been refused
+  PinDevice device;
+  std::string written;  // the pin as that device's command wrote it
+  NodeId at = kNoNode;  // the command that gave it the pin
+  bool maybe = false;   // that command may not have run, or the pin may have been refused
 };
 
 enum class MachineMode : uint8_t { FFF, CNC, Laser };
@@ -264,8 +299,8 @@ struct MachineState {
   bool ports_known = true;       // false after an M950 J/P/S/R with an unknown number
   std::vector<PortUse> port_uses;
   std::map<int, Trigger> triggers;
-  std::map<std::string, PinOwner> pins;                       // by PinName::key: the pins devices hold (RRF 3)
-  std::map<std::string, std::vector<std::string>> pins_held;  // the same by device (PinOwner::device -> keys)
+  std::unordered_map<std::string, PinOwner> pins;  // by PinName::key: the pins devices hold (RRF 3), in no order
+  std::unordered_map<PinDevice, std::vector<std::string>, PinDeviceHash> pins_held;  // the same by device (may be [])
   bool pins_known = true;                            // false after a device from an expression took or gave back pins
   std::map<int, FilamentMonitor> filament_monitors;  // by extruder
   bool filament_monitors_known = true;

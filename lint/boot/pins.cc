@@ -16,40 +16,44 @@ namespace rrflint {
 namespace {
 
 /// pin_name(), and the board as written ("" without a "<board>." prefix).
-PinName parse_pin(std::string_view written, std::string& board) {
+PinName parse_pin(std::string_view written, std::string_view& board) {
   std::string_view s = written;
   auto skip_flags = [&] {
     while (!s.empty() && (s.front() == '!' || s.front() == '^' || s.front() == '*')) s.remove_prefix(1);
   };
   skip_flags();
-  board.clear();
+  board = {};
   size_t digits = 0;
   while (digits < s.size() && std::isdigit(static_cast<unsigned char>(s[digits]))) ++digits;
   if (digits > 0 && digits < s.size() && s[digits] == '.') {
     const size_t zeros = std::min(s.find_first_not_of('0'), digits - 1);  // "00." is board 0
-    board = std::string(s.substr(zeros, digits - zeros));
+    board = s.substr(zeros, digits - zeros);
     s.remove_prefix(digits + 1);
     skip_flags();
   }
-  std::string name;
-  for (char ch : s)
-    if (ch != '_' && ch != '-') name += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
   PinName p;
   p.written = std::string(written);
-  if (name != "nil" && !name.empty()) p.key = (board.empty() ? std::string("0") : board) + "." + name;
+  p.key.reserve((board.empty() ? 1 : board.size()) + 1 + s.size());
+  p.key += board.empty() ? std::string_view("0") : board;
+  p.key += '.';
+  const size_t name_at = p.key.size();
+  for (char ch : s)
+    if (ch != '_' && ch != '-') p.key += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string_view name = std::string_view(p.key).substr(name_at);
+  if (name.empty() || name == "nil") p.key.clear();
   return p;
 }
 
 /// The pins of a "+"-separated list; a pin without a board prefix after the first is on the first one's board.
 std::vector<PinName> pin_list(std::string_view text) {
   std::vector<PinName> out;
-  std::string first_board, board;
+  std::string_view first_board, board;
   for (size_t start = 0; start <= text.size();) {
     const size_t plus = std::min(text.find('+', start), text.size());
     PinName p = parse_pin(text.substr(start, plus - start), board);
     if (!p.key.empty()) {
       if (out.empty()) first_board = board;
-      else if (board.empty() && !first_board.empty()) p.key = first_board + p.key.substr(p.key.find('.'));
+      else if (board.empty() && !first_board.empty()) p.key = std::string(first_board) + p.key.substr(p.key.find('.'));
       out.push_back(std::move(p));
     }
     start = plus + 1;
@@ -58,11 +62,11 @@ std::vector<PinName> pin_list(std::string_view text) {
 }
 
 /// A change for `device` from the string parameter `letter` (nullopt when the command has no such parameter).
-std::optional<PinChange> pins_from(const ParsedFile& pf, const Command& c, char letter, std::string device) {
+std::optional<PinChange> pins_from(const ParsedFile& pf, const Command& c, char letter, PinDevice device) {
   auto v = get_string(pf, c, letter);
   if (!v.present()) return std::nullopt;
   PinChange ch;
-  ch.device = std::move(device);
+  ch.device = device;
   ch.param = v.param;
   if (v.known()) ch.pins = pin_list(v.value);
   else ch.pins_known = false;
@@ -70,25 +74,26 @@ std::optional<PinChange> pins_from(const ParsedFile& pf, const Command& c, char 
 }
 
 /// A change by which `device` only gives its pins back (deleted or re-created without pins).
-PinChange release_only(std::string device) {
+PinChange release_only(PinDevice device) {
   PinChange ch;
-  ch.device = std::move(device);
+  ch.device = device;
   return ch;
 }
 
 /// M950 <letter><n> C"pins": exactly one device letter (Platform::ConfigurePort); without C it changes no pin.
 void m950(const ParsedFile& pf, const Command& c, const MachineState& s, std::vector<PinChange>& out) {
-  static constexpr std::pair<char, const char*> kDevices[] = {
-      {'D', "SD card"}, {'E', "LED strip"}, {'R', "spindle"},     {'J', "GPIO input"},
-      {'F', "fan"},     {'H', "heater"},    {'P', "GPIO output"}, {'S', "servo"}};
+  using K = PinDevice::Kind;
+  static constexpr std::pair<char, K> kDevices[] = {{'D', K::SdCard},  {'E', K::LedStrip}, {'R', K::Spindle},
+                                                    {'J', K::GpioIn},  {'F', K::Fan},      {'H', K::Heater},
+                                                    {'P', K::GpioOut}, {'S', K::Servo}};
   const char which = m950_device(pf, c, s.firmware, s.board);
-  const char* kind = nullptr;
-  for (const auto& [L, name] : kDevices)
-    if (L == which) kind = name;
-  if (!kind || !pf.find(c, 'C')) return;
+  K kind = K::Unknown;
+  for (const auto& [L, k] : kDevices)
+    if (L == which) kind = k;
+  if (kind == K::Unknown || !pf.find(c, 'C')) return;
   auto n = get_int(pf, c, which);
   if (n.known() && n.value < 0) return;
-  auto ch = pins_from(pf, c, 'C', n.known() ? fmt::format("{} {}", kind, n.value) : std::string());
+  auto ch = pins_from(pf, c, 'C', n.known() ? PinDevice{kind, n.value} : PinDevice{});
   if (ch) out.push_back(std::move(*ch));
 }
 
@@ -100,7 +105,7 @@ void m308(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
   const bool create = static_cast<bool>(pf.find(c, 'Y'));
   if (!create && S.known() && s.sensors_known && !s.unknown_baseline && !s.sensors.count(static_cast<int>(S.value)))
     return;  // "Sensor n does not exist"
-  const std::string device = S.known() ? fmt::format("sensor {}", S.value) : std::string();
+  const PinDevice device = S.known() ? PinDevice{PinDevice::Kind::Sensor, S.value} : PinDevice{};
   auto P = get_string(pf, c, 'P');
   const bool output_of = P.known() && P.value.size() > 1 &&
                          std::tolower(static_cast<unsigned char>(P.value[0])) == 's' &&
@@ -117,7 +122,7 @@ void m558(const ParsedFile& pf, const Command& c, std::vector<PinChange>& out) {
   if (!P.present() || (P.known() && (P.value == 4 || P.value == 6 || P.value == 7))) return;
   auto K = get_int(pf, c, 'K');
   if (K.known() && K.value < 0) return;
-  const std::string device = K.unknown() ? std::string() : fmt::format("Z probe {}", K.known() ? K.value : 0);
+  const PinDevice device = K.unknown() ? PinDevice{} : PinDevice{PinDevice::Kind::ZProbe, K.known() ? K.value : 0};
   // Types 0 (no probe) and 10 (motor stall) read no pins.
   const bool no_pins = P.known() && (P.value == 0 || P.value == 10);
   auto ch = no_pins ? std::nullopt : pins_from(pf, c, 'C', device);
@@ -134,7 +139,7 @@ void m574(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
   for (const Axis& a : s.axes)
     if (pf.find(c, a.letter)) named.push_back(&a);
   if (named.empty()) return;
-  auto device = [](const Axis& a) { return fmt::format("the {} endstop", a.letter); };
+  auto device = [](const Axis& a) { return PinDevice{PinDevice::Kind::Endstop, static_cast<unsigned char>(a.letter)}; };
   if (pf.find(c, 'P')) {
     if (named.size() > 1 || (S.known() && S.value != 1)) return;  // "Invalid use of P parameter"
     if (auto ch = pins_from(pf, c, 'P', device(*named[0]))) out.push_back(std::move(*ch));
@@ -154,7 +159,7 @@ void m574(const ParsedFile& pf, const Command& c, const MachineState& s, std::ve
 void m591(const ParsedFile& pf, const Command& c, std::vector<PinChange>& out) {
   auto D = get_int(pf, c, 'D');
   if (!D.present() || !pf.find(c, 'P')) return;
-  const std::string device = D.known() ? fmt::format("filament monitor {}", D.value) : std::string();
+  const PinDevice device = D.known() ? PinDevice{PinDevice::Kind::FilamentMonitor, D.value} : PinDevice{};
   auto P = get_int(pf, c, 'P');
   auto ch = P.known() && P.value == 0 ? std::nullopt : pins_from(pf, c, 'C', device);  // P0 only deletes
   if (!ch) ch = release_only(device);
@@ -162,6 +167,27 @@ void m591(const ParsedFile& pf, const Command& c, std::vector<PinChange>& out) {
 }
 
 }  // namespace
+
+std::string PinDevice::name() const {
+  using K = Kind;
+  switch (kind) {
+    case K::Unknown: return "a device";
+    case K::SdCard: return fmt::format("SD card {}", number);
+    case K::LedStrip: return fmt::format("LED strip {}", number);
+    case K::Spindle: return fmt::format("spindle {}", number);
+    case K::GpioIn: return fmt::format("GPIO input {}", number);
+    case K::Fan: return fmt::format("fan {}", number);
+    case K::Heater: return fmt::format("heater {}", number);
+    case K::GpioOut: return fmt::format("GPIO output {}", number);
+    case K::Servo: return fmt::format("servo {}", number);
+    case K::Sensor: return fmt::format("sensor {}", number);
+    case K::ZProbe: return fmt::format("Z probe {}", number);
+    case K::Endstop: return fmt::format("the {} endstop", static_cast<char>(number));
+    case K::FilamentMonitor: return fmt::format("filament monitor {}", number);
+    case K::Laser: return "the laser";
+  }
+  return "a device";
+}
 
 std::optional<PinClash> pin_clash(const MachineState& s, const PinChange& ch) {
   for (size_t i = 0; i < ch.pins.size(); ++i) {
@@ -175,30 +201,34 @@ std::optional<PinClash> pin_clash(const MachineState& s, const PinChange& ch) {
 
 void apply_pin_changes(MachineState& s, const std::vector<PinChange>& changes, NodeId id, bool maybe) {
   for (const PinChange& ch : changes) {
-    if (ch.device.empty()) {  // any device's pins may have changed
+    if (!ch.device.known()) {  // any device's pins may have changed
       s.pins_known = false;
       continue;
     }
     // Given back even inside an `if`: a pin that may be free is not reported as taken. (Through the device's own
-    // list: a long file names many pins, and most commands that name one give some back.)
-    if (auto held = s.pins_held.find(ch.device); held != s.pins_held.end()) {
-      for (const std::string& key : held->second) s.pins.erase(key);
-      s.pins_held.erase(held);
+    // list: a long file names many pins, and most commands that name one give some back. The list is emptied, not
+    // erased, so that a device given pins again and again reuses it.)
+    std::vector<std::string>* held = nullptr;
+    if (auto it = s.pins_held.find(ch.device); it != s.pins_held.end()) {
+      held = &it->second;
+      for (const std::string& key : *held) s.pins.erase(key);
+      held->clear();
     }
-    if (!ch.pins_known) continue;
+    if (!ch.pins_known || ch.pins.empty()) continue;
     const auto clash = pin_clash(s, ch);
     if (clash && (!clash->holder || !clash->holder->maybe)) continue;  // refused: the device holds no pin
     for (const PinName& p : ch.pins) {
       PinOwner& o = s.pins[p.key];
-      if (!o.device.empty() && o.device != ch.device) std::erase(s.pins_held[o.device], p.key);  // a maybe holder
+      if (o.device.known() && o.device != ch.device) std::erase(s.pins_held[o.device], p.key);  // a maybe holder
       o = PinOwner{ch.device, p.written, id, maybe || clash.has_value()};
-      s.pins_held[ch.device].push_back(p.key);
+      if (!held) held = &s.pins_held[ch.device];  // (an insertion into an unordered_map moves no element)
+      held->push_back(p.key);
     }
   }
 }
 
 PinName pin_name(std::string_view written) {
-  std::string board;
+  std::string_view board;
   return parse_pin(written, board);
 }
 
@@ -212,7 +242,7 @@ std::vector<PinChange> pin_changes(const ParsedFile& pf, const Command& c, const
     case 574: m574(pf, c, s, out); break;
     case 591: m591(pf, c, out); break;
     case 452:
-      if (auto ch = pins_from(pf, c, 'C', "the laser")) out.push_back(std::move(*ch));
+      if (auto ch = pins_from(pf, c, 'C', PinDevice{PinDevice::Kind::Laser, 0})) out.push_back(std::move(*ch));
       break;
     default: break;
   }

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "lint/render/render.h"
 
 namespace rrflint::model_text {
@@ -60,6 +62,15 @@ using nlohmann::json;
 void table_or_none(std::ostream& os, const std::vector<std::vector<std::string>>& rows, const char* none = "none") {
   if (rows.size() > 1) table(os, rows);
   else os << "  " << none << "\n";
+}
+
+/// The pin table (kept in no order on the forward pass) by pin name.
+std::vector<std::pair<const std::string*, const PinOwner*>> pins_by_name(const MachineState& s) {
+  std::vector<std::pair<const std::string*, const PinOwner*>> v;
+  v.reserve(s.pins.size());
+  for (const auto& [key, o] : s.pins) v.emplace_back(&key, &o);
+  std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return *a.first < *b.first; });
+  return v;
 }
 
 std::string axis_name(const Axis& a) {
@@ -219,8 +230,9 @@ void render_ports(std::ostream& os, const SourceManager& sm, const MachineResult
   table_or_none(os, rows);
   os << fmt::format("\nPins{}\n", s.pins_known ? "" : " (partly unknown: a device or a macro path from an expression)");
   rows = {{"pin", "held by", "as written", "taken at"}};
-  for (const auto& [key, o] : s.pins)
-    rows.push_back({sanitize(key), o.device, "\"" + sanitize(o.written) + "\"", where(r, sm, o.at) + maybe(o.maybe)});
+  for (const auto& [key, o] : pins_by_name(s))
+    rows.push_back(
+        {sanitize(*key), o->device.name(), "\"" + sanitize(o->written) + "\"", where(r, sm, o->at) + maybe(o->maybe)});
   table_or_none(os, rows);
 }
 
@@ -369,12 +381,12 @@ void machine_json(json& j, const SourceManager& sm, const MachineResult& r) {
                    {"created_at", at(m.created)}});
   j["filament_monitors"] = fms;
   json pins = json::array();
-  for (const auto& [key, o] : s.pins)
-    pins.push_back({{"pin", sanitize(key)},
-                    {"device", o.device},
-                    {"written", sanitize(o.written)},
-                    {"maybe", o.maybe},
-                    {"at", at(o.at)}});
+  for (const auto& [key, o] : pins_by_name(s))
+    pins.push_back({{"pin", sanitize(*key)},
+                    {"device", o->device.name()},
+                    {"written", sanitize(o->written)},
+                    {"maybe", o->maybe},
+                    {"at", at(o->at)}});
   j["pins"] = pins;
   j["pins_known"] = s.pins_known;
   json params = json::object();
