@@ -13,14 +13,6 @@
 namespace rrflint::cli {
 namespace {
 
-// The line ending most of the file uses; "\n" when it has none.
-std::string_view dominant_eol(const SourceFile& f) {
-  const LineEndings& e = f.endings();
-  if (e.crlf > e.lf && e.crlf >= e.cr) return "\r\n";
-  if (e.cr > e.lf && e.cr > e.crlf) return "\r";
-  return "\n";
-}
-
 // Inserted text written with "\n" gets the file's own line ending (a rule need not know it).
 std::string with_eol(const std::string& s, std::string_view eol) {
   if (eol == "\n" || s.find('\r') != std::string::npos || s.find('\n') == std::string::npos) return s;
@@ -66,7 +58,7 @@ size_t apply_fixes(const SourceManager& sm, const std::vector<Diagnostic>& diags
       // An edit of line endings themselves (CR to LF) keeps the ones it writes.
       const std::string_view replaced = sm.get(e.loc.file).slice(e.loc.span);
       if (replaced.empty() || replaced.find_first_not_of("\r\n") != std::string_view::npos)
-        copy.replacement = with_eol(e.replacement, dominant_eol(sm.get(e.loc.file)));
+        copy.replacement = with_eol(e.replacement, sm.get(e.loc.file).usual_ending());
       accepted[e.loc.file].push_back(std::move(copy));
     }
     if (per_file) ++(*per_file)[d.fix->edits.front().loc.file];

@@ -114,7 +114,7 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
   std::string_view text = src.slice(ls);
   const std::string indent(text.substr(0, text.find_first_not_of(" \t")));
   std::string term(src.terminator(l0));
-  if (term.empty()) term = l0 > 0 ? std::string(src.terminator(l0 - 1)) : "\n";
+  if (term.empty()) term = src.usual_ending();
   fix.edits.push_back(Edit::insert(cx.at(Span{ls.end, ls.end}), term + indent + m568));
   return fix;
 }

@@ -40,7 +40,7 @@ inline Span indentation(const ParsedFile& pf, const Line& line) {
 inline std::string new_line_after(const ParsedFile& pf, const Line& line) {
   const SourceFile& src = *pf.source;
   std::string out(src.terminator(src.line_of(line.span.begin)));
-  if (out.empty()) out = src.endings().crlf > 0 ? "\r\n" : "\n";
+  if (out.empty()) out = src.usual_ending();
   return out + std::string(pf.text(indentation(pf, line)));
 }
 

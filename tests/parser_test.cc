@@ -138,6 +138,11 @@ TEST_CASE("parser: lines end at LF, CRLF and lone CR", "[parser]") {
   CHECK(p.pf.lines[1].span == Span{7, 10});
   CHECK(p.source->endings().crlf == 1);
   CHECK(p.source->endings().lf == 1);
+  CHECK(p.source->usual_ending() == "\n");  // a tie goes to LF
+  CHECK(parse_text("G1 X1\r\nM83\r\nM82\n").source->usual_ending() == "\r\n");
+  CHECK(parse_text("G1 X1\rM83\rM82\r\n").source->usual_ending() == "\r");
+  CHECK(parse_text("G1 X1\rM83\r\nM82").source->usual_ending() == "\r\n");  // CRLF wins a tie with CR
+  CHECK(parse_text("G1 X1").source->usual_ending() == "\n");
 }
 
 TEST_CASE("parser: NUL ends a line and the rest is a new line", "[parser]") {

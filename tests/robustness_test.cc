@@ -687,6 +687,29 @@ TEST_CASE("no fix rewrites a command that does not parse (found by fuzz_fix)", "
   CHECK(r.diagnostics[2].fix->title == "write one M569 per driver (2)");
 }
 
+TEST_CASE("a fix on the last line of a file with mixed line endings uses the usual one", "[robustness][fix]") {
+  // The last line has no ending of its own: a line a fix adds after it takes the ending most lines have, the one
+  // --fix also writes for a "\n" in a fix's text (SourceFile::usual_ending). RRF220 took CRLF when any line had
+  // it, RRF307 the line before's.
+  auto edits = [](const char* text, const char* rule) {
+    SourceManager sm;
+    MachineResult r = lint_one_rule(sm, text, rule);
+    std::vector<std::string> out;
+    for (const Diagnostic& d : r.diagnostics)
+      if (d.fix)
+        for (const Edit& e : d.fix->edits) out.push_back(e.replacement);
+    return out;
+  };
+  CHECK(edits("M584 X0 Y1 Z2:3 E4\r\nM569 P0 S1\nM569 P1 S1\nM569 P2:3 S1", "RRF220") ==
+        std::vector<std::string>{"M569 P2 S1\nM569 P3 S1"});
+  CHECK(edits("M584 X0 Y1 Z2:3 E4\r\nM569 P0 S1\r\nM569 P1 S1\nM569 P2:3 S1", "RRF220") ==
+        std::vector<std::string>{"M569 P2 S1\r\nM569 P3 S1"});
+  CHECK(edits("M584 X0 Y1 Z2 E3\nM563 P0 D0\nM563 P1 D0\r\n  G10 P1 X1 S200", "RRF307") ==
+        std::vector<std::string>{"", "\n  M568 P1 S200"});
+  CHECK(edits("M584 X0 Y1 Z2 E3\r\nM563 P0 D0\r\nM563 P1 D0\n  G10 P1 X1 S200", "RRF307") ==
+        std::vector<std::string>{"", "\r\n  M568 P1 S200"});
+}
+
 TEST_CASE("no fix edits inside a line whose checksum it would break", "[robustness][fix]") {
   // `N5 G10 P1 S200*29` runs while its checksum matches; RRF307's M568 in place of the G10 would break the checksum
   // and RRF would drop the line silently. Every rule's fix is withdrawn there (lint_machine); the same G10 with a

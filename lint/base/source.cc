@@ -128,6 +128,13 @@ std::string_view SourceFile::terminator(uint32_t line0) const {
   return std::string_view(bytes_).substr(e, next - e);
 }
 
+std::string_view SourceFile::usual_ending() const {
+  const LineEndings& e = endings_;
+  if (e.crlf > e.lf && e.crlf >= e.cr) return "\r\n";
+  if (e.cr > e.lf && e.cr > e.crlf) return "\r";
+  return "\n";
+}
+
 namespace {
 size_t code_point_length(std::string_view s, size_t i);
 }  // namespace
