@@ -3,6 +3,7 @@
 
 #include "lint/engine/rule.h"
 #include "rules/append_fix.h"
+#include "rules/lex_common.h"
 #include "rules/tool_helpers.h"
 
 namespace rrflint {
@@ -109,13 +110,8 @@ std::optional<Fix> make_fix(const FileContext& cx, const Command& c) {
     for (const Param* q = params.data(); q != p; ++q) begin = q->span.end;
     fix.edits.push_back(Edit::remove(cx.at(Span{begin, p->span.end})));
   }
-  const uint32_t l0 = src.line_of(c.span.begin);
-  const Span ls = src.line_span(l0);
-  std::string_view text = src.slice(ls);
-  const std::string indent(text.substr(0, text.find_first_not_of(" \t")));
-  std::string term(src.terminator(l0));
-  if (term.empty()) term = src.usual_ending();
-  fix.edits.push_back(Edit::insert(cx.at(Span{ls.end, ls.end}), term + indent + m568));
+  const Span ls = src.line_span(src.line_of(c.span.begin));
+  fix.edits.push_back(Edit::insert(cx.at(Span{ls.end, ls.end}), lex::new_line_after(pf, line) + m568));
   return fix;
 }
 

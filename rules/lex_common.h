@@ -39,9 +39,7 @@ inline Span indentation(const ParsedFile& pf, const Line& line) {
 /// of a file without one, the file's usual one), then the line's indentation.
 inline std::string new_line_after(const ParsedFile& pf, const Line& line) {
   const SourceFile& src = *pf.source;
-  std::string out(src.terminator(src.line_of(line.span.begin)));
-  if (out.empty()) out = src.usual_ending();
-  return out + std::string(pf.text(indentation(pf, line)));
+  return std::string(src.line_ending(src.line_of(line.span.begin))) + std::string(pf.text(indentation(pf, line)));
 }
 
 /// Calls `f(offset)` for every character of `s` that is outside quoted strings and `{…}` expressions, the way

@@ -135,6 +135,11 @@ std::string_view SourceFile::usual_ending() const {
   return "\n";
 }
 
+std::string_view SourceFile::line_ending(uint32_t line0) const {
+  const std::string_view t = terminator(line0);
+  return t.empty() ? usual_ending() : t;
+}
+
 namespace {
 size_t code_point_length(std::string_view s, size_t i);
 }  // namespace

@@ -120,9 +120,12 @@ class SourceFile {
   uint64_t serial() const { return serial_; }
   /// The terminator after line `line0` ("\n", "\r\n", "\r" or "" at end of file).
   std::string_view terminator(uint32_t line0) const;
-  /// The line ending most of the file's lines have ("\n" on a tie with it, and in a file of one line): what a fix
-  /// writes where the line it edits has none (the last line), and what "\n" in a fix's text becomes.
+  /// The line ending most of the file's lines have ("\n" on a tie with it, and in a file of one line): what "\n" in
+  /// a fix's text becomes.
   std::string_view usual_ending() const;
+  /// What a fix writes to start a line after line `line0`: its terminator, or where it has none (the last line) the
+  /// usual ending.
+  std::string_view line_ending(uint32_t line0) const;
 
  private:
   FileId id_;

@@ -276,8 +276,7 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
     if (broken) {
       uint32_t ind = ls.begin;
       while (ind < ls.end && blank(text[ind])) ++ind;
-      std::string eol(f.terminator(line0));
-      if (eol.empty()) eol = f.usual_ending();
+      const std::string_view eol = f.line_ending(line0);
       edits.push_back(Edit::insert(
           Location{f.id(), Span{ls.begin, ls.begin}},
           fmt::format("{}; rrflint: disable-next-line={}{}{}", text.substr(ls.begin, ind - ls.begin), list, why, eol)));
@@ -297,8 +296,7 @@ std::vector<Edit> suppression_edits(const ParsedFile& pf, const RuleSet& rules,
 
 Edit file_suppression_edit(const SourceFile& f, std::string_view list, std::string_view reason) {
   const std::string why = reason.empty() ? "" : fmt::format(" -- {}", reason);
-  std::string eol = f.line_count() > 0 ? std::string(f.terminator(0)) : "";
-  if (eol.empty()) eol = f.usual_ending();
+  const std::string_view eol = f.line_count() > 0 ? f.line_ending(0) : f.usual_ending();
   return Edit::insert(Location{f.id(), Span{0, 0}}, fmt::format("; rrflint: disable-file={}{}{}", list, why, eol));
 }
 
