@@ -30,6 +30,7 @@ struct Totals {
   std::string diff;
   std::optional<std::string> stdout_text;  // fixed or annotated stdin
   std::vector<MachineTarget> machines;     // each linted machine's firmware target (json)
+  std::vector<std::string> inputs;         // the files on disk this run read: no report may be written over one
 };
 
 // The settings of a job's machine: its sys folder (or a lone file's folder) finds the governing config.
@@ -280,6 +281,11 @@ struct JobRun {
     }
     r.diagnostics = {};
     t.machines.push_back(MachineTarget{job.title, r.target});
+    for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
+      if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) t.inputs.push_back(std::move(*abs));
+    if (eff.config) t.inputs.insert(t.inputs.end(), eff.config->files.begin(), eff.config->files.end());
+    // Stdin stands for the file it is named as, which the report must not replace either.
+    if (job.stdin_bytes && !co.plan.stdin_filename.empty()) t.inputs.push_back(co.plan.stdin_filename);
     if (co.verbose) {
       const Target& tg = r.target;
       std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
@@ -409,17 +415,6 @@ std::string truncated_warning(const std::string& title, size_t nodes) {
       title, count);
 }
 
-unsigned default_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
-
-bool use_color(const std::string& mode, int fd) {
-  if (mode == "always") return true;
-  if (mode == "never") return false;
-  if (const char* f = std::getenv("FORCE_COLOR"); f && *f && std::string(f) != "0") return true;
-  if (const char* n = std::getenv("NO_COLOR"); n && *n) return false;
-  if (const char* t = std::getenv("TERM"); t && std::string(t) == "dumb") return false;
-  return isatty(fd);
-}
-
 int run_check(const CliOptions& cli, const CheckOptions& co) {
   if (const std::string why = conflicting_options(co); !why.empty()) {
     error(why);
@@ -464,9 +459,8 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   std::ofstream file_out;
   std::ostream* os = &std::cout;
   if (!co.output_file.empty()) {
-    file_out.open(co.output_file, std::ios::binary);
-    if (!file_out) {
-      error(fmt::format("{}: cannot write", co.output_file));
+    if (std::string err; !open_report_file(co.output_file, t.inputs, file_out, &err)) {
+      error(err);
       return kExitError;
     }
     os = &file_out;

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <optional>
@@ -245,6 +246,12 @@ FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOpt
 /// writable in place, when its owner cannot be kept, and when it is a symbolic link to a file outside `root`.
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
                   const std::optional<fs::path>& root, std::string* err);
+
+/// Opens `path` for the report (`rrflint check -o`), unless it is one of `inputs`, the files the run read (a linted
+/// file, a macro, a settings file; the same file under any name or link), which the report would replace. False,
+/// with `err`, then or when it cannot be opened.
+bool open_report_file(const std::string& path, const std::vector<std::string>& inputs, std::ofstream& out,
+                      std::string* err);
 
 /// A unified diff (`--- a/x`, `+++ b/x`, 3 lines of context); empty when the texts are equal.
 std::string unified_diff(std::string_view before, std::string_view after, const std::string& path);

@@ -1,10 +1,11 @@
 // Applying fixes: conflict-free selection (whole fixes only), line-ending preservation, atomic writes that
-// never lose data, and unified diffs for --diff.
+// never lose data, the report file that never replaces an input, and unified diffs for --diff.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <tuple>
 
 #include "cli/cli.h"
@@ -336,6 +337,23 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
     k = end;
   }
   return out;
+}
+
+bool open_report_file(const std::string& path, const std::vector<std::string>& inputs, std::ofstream& out,
+                      std::string* err) {
+  std::error_code ec;
+  if (fs::exists(path, ec))
+    for (const std::string& in : inputs)
+      if (fs::equivalent(path, in, ec)) {
+        *err = fmt::format(
+            "--output-file {}: that is {}, one of this run's input files, and the report would replace it (choose "
+            "another file, or leave out -o for stdout)",
+            path, in);
+        return false;
+      }
+  out.open(path, std::ios::binary);
+  if (!out) *err = fmt::format("{}: cannot write", path);
+  return static_cast<bool>(out);
 }
 
 }  // namespace rrflint::cli

@@ -169,7 +169,7 @@ void add_check(CLI::App& app, Commands& c) {
       ->add_option("--stdin-filename", co.plan.stdin_filename,
                    "The name of the file read from stdin (messages, config, card)")
       ->type_name("FILE");
-  check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout")
+  check->add_option("-o,--output-file", co.output_file, "Write the report to this file instead of stdout ('-': stdout)")
       ->type_name("FILE");
   check->add_flag("--exit-zero", co.exit_zero, "Exit 0 even when findings reach --fail-on");
   check->add_option("-j,--jobs", co.jobs, "Lint up to N machines at once (default: the CPU count, at most 8)")
@@ -331,6 +331,7 @@ int main(int argc, char** argv) {
   if (c.model->parsed()) return run_model(cli, c.model_path, c.model_format);
 
   c.co.format_given = c.format_opt->count() > 0;
+  if (c.co.output_file == "-") c.co.output_file.clear();
   c.co.add_suppressions = add_suppressions;
   c.co.plan.respect_gitignore = !c.no_gitignore;
   const int rc = run_check(cli, c.co);

@@ -2,11 +2,14 @@
 // where each one came from.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "cli/cli.h"
+#include "frontend/platform.h"
 #include "lint/engine/rule.h"
 #include "rules/registry.h"
 
@@ -298,6 +301,17 @@ void print_rules(std::ostream& os, const CliOptions& cli, const Config* cfg) {
 }
 
 }  // namespace
+
+unsigned default_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
+
+bool use_color(const std::string& mode, int fd) {
+  if (mode == "always") return true;
+  if (mode == "never") return false;
+  if (const char* f = std::getenv("FORCE_COLOR"); f && *f && std::string(f) != "0") return true;
+  if (const char* n = std::getenv("NO_COLOR"); n && *n) return false;
+  if (const char* t = std::getenv("TERM"); t && std::string(t) == "dumb") return false;
+  return isatty(fd);
+}
 
 int run_config(const CliOptions& cli, const std::string& path_arg) {
   std::error_code ec;

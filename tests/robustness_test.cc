@@ -616,6 +616,37 @@ TEST_CASE("matrix: --fix writes only the files that were linted, and keeps their
   }
 }
 
+TEST_CASE("matrix: the report is never written over a file the run reads; -o - is stdout", "[cli][matrix]") {
+  TempTree t;
+  const std::string config = "M584 X0 Y1 Z2\nG10 P0 X1\nM98 P\"m.g\"\n", macro = "G28\n",
+                    toml = "fail-on = \"error\"\n";
+  t.write("p/sys/config.g", config);
+  t.write("p/sys/m.g", macro);
+  t.write("p/.rrflint.toml", toml);
+  fs::create_symlink("sys/config.g", t / "p/link");
+  // config.g, a macro it runs (named another way), the settings file, a link to config.g, and the file stdin stands
+  // for: each is refused (exit 2) and keeps its bytes, with --fix too.
+  for (const std::string args :
+       {"check p -o p/sys/config.g", "check p -o p/sys/../sys/m.g", "check p -o p/.rrflint.toml", "check p -o p/link",
+        "check p/sys/config.g --fix -o p/link", "check --stdin-filename p/sys/config.g - -o p/sys/config.g"}) {
+    INFO(args);
+    const auto o = run_rrflint(t.root(), args, "", config);
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "one of this run's input files, and the report would replace it"));
+    CHECK(t.read("p/sys/config.g") == config);
+    CHECK(t.read("p/sys/m.g") == macro);
+    CHECK(t.read("p/.rrflint.toml") == toml);
+  }
+  // Another file takes the report; '-' is stdout, not a file named '-'.
+  auto o = run_rrflint(t.root(), "check p -o report.txt");
+  CHECK(o.code == 1);
+  CHECK(contains(t.read("report.txt"), "g10-tool-before-definition"));
+  o = run_rrflint(t.root(), "check p --format json -o -");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "\"g10-tool-before-definition\""));
+  CHECK(!fs::exists(t / "-"));
+}
+
 TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load problem, a macro a finding",
           "[cli][matrix]") {
   // A reader that answers "permission denied" for some files, as the disk reader does for a mode-000 file.
