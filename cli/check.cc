@@ -373,6 +373,14 @@ int report_diff(std::ostream& os, const Totals& t, const CheckOptions& co, bool 
   return t.fixed_files ? kExitFindings : kExitClean;
 }
 
+// A report that could not be written whole (a full disk, a closed output) is an I/O error, never a pass.
+bool written(std::ostream& os, const CheckOptions& co) {
+  if (os.flush()) return true;
+  error(fmt::format("{}: cannot write the report",
+                    co.output_file.empty() ? (&os == &std::cerr ? "stderr" : "stdout") : co.output_file));
+  return false;
+}
+
 // The findings of every machine, in a stable order across machines (by path, then position), in `format`.
 void render_report(std::ostream* os, const SourceManager& sm, Totals& t, const CheckOptions& co,
                    const std::string& format, const std::string& docs_base) {
@@ -466,7 +474,10 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     os = &file_out;
   }
 
-  if (co.diff) return report_diff(*os, t, co, io_error);
+  if (co.diff) {
+    const int rc = report_diff(*os, t, co, io_error);
+    return written(*os, co) ? rc : kExitError;
+  }
 
   // The fixed stdin text owns stdout; the report then goes to stderr.
   if (t.stdout_text && co.output_file.empty()) {
@@ -482,7 +493,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
   if (!job_settings(jobs.empty() ? none : jobs.front(), settings, 1, first)) first.docs_base = default_docs_base();
   render_report(os, sm, t, co, format, first.docs_base);
   trace::mark("rendered");
-  if (io_error) return kExitError;
+  if (!written(*os, co) || io_error) return kExitError;
   return t.failing && !co.exit_zero ? kExitFindings : kExitClean;
 }
 

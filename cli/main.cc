@@ -267,6 +267,14 @@ int run_model(const CliOptions& cli, const std::string& model_path, const std::s
   return kExitClean;
 }
 
+// A subcommand's exit code, or an I/O error (2) when its output could not be written whole to stdout (a full disk):
+// a report that did not arrive is never a pass. (A closed pipe ends the process with SIGPIPE first, as for grep.)
+int written(int rc) {
+  if (rc == kExitError || std::cout.flush()) return rc;
+  error("stdout: cannot write the output");
+  return kExitError;
+}
+
 // `rrflint rule --generate-man FILE --generate-completion FILE` (generate.h): the build runs it.
 int write_generated(const CLI::App& app, const std::string& man_file, const std::string& completion_file) {
   for (const auto& [file, text] : {std::pair{man_file, man_page(app, builtin_rules(), installed_rule_docs())},
@@ -316,7 +324,7 @@ int main(int argc, char** argv) {
 
   if (c.rule->parsed() && (!c.man_file.empty() || !c.completion_file.empty()))
     return write_generated(app, c.man_file, c.completion_file);
-  if (c.rule->parsed()) return run_rule(c.ro, c.cli);
+  if (c.rule->parsed()) return written(run_rule(c.ro, c.cli));
   if (c.server->parsed()) return run_server();
 
   for (CLI::App* sub : {c.check, c.model, c.config}) {
@@ -327,14 +335,14 @@ int main(int argc, char** argv) {
   }
   if (!validate(cli)) return kExitError;
 
-  if (c.config->parsed()) return run_config(cli, c.config_path);
-  if (c.model->parsed()) return run_model(cli, c.model_path, c.model_format);
+  if (c.config->parsed()) return written(run_config(cli, c.config_path));
+  if (c.model->parsed()) return written(run_model(cli, c.model_path, c.model_format));
 
   c.co.format_given = c.format_opt->count() > 0;
   if (c.co.output_file == "-") c.co.output_file.clear();
   c.co.add_suppressions = add_suppressions;
   c.co.plan.respect_gitignore = !c.no_gitignore;
-  const int rc = run_check(cli, c.co);
+  const int rc = written(run_check(cli, c.co));
   trace::mark("freed");
   return rc;
 }

@@ -647,6 +647,36 @@ TEST_CASE("matrix: the report is never written over a file the run reads; -o - i
   CHECK(!fs::exists(t / "-"));
 }
 
+TEST_CASE("matrix: output that cannot be written is an I/O error (exit 2), never a pass", "[cli][matrix]") {
+  if (!fs::exists("/dev/full")) {
+    WARN("no /dev/full here: not tested");
+    return;
+  }
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\nG10 P0 X1\n");
+  t.write("clean/sys/config.g", "M584 X0 Y1 Z2\n");
+  // rrflint with stdout on a full disk: its exit code and stderr.
+  auto to_full = [&](const std::string& args) {
+    const std::string err = (t / "err.txt").string();
+    const int status = std::system(("cd " + shell_quote(t.root().string()) + " && " + shell_quote(RRFLINT_BINARY) +
+                                    " " + args + " > /dev/full 2> " + shell_quote(err))
+                                       .c_str());
+    return std::pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, t.read("err.txt"));
+  };
+  // A full disk: the report to a file and to stdout, with findings, with none and with --exit-zero; the other
+  // subcommands' output.
+  for (const std::string args :
+       {"check p -o /dev/full", "check p", "check p --exit-zero", "check clean",
+        "check clean --format json -o /dev/full", "check --format sarif p", "model p", "rule RRF301", "config p"}) {
+    INFO(args);
+    const auto [code, err] = to_full(args);
+    CHECK(code == 2);
+    CHECK(contains(err, "cannot write the"));
+  }
+  // What writes nothing does not fail: --diff with no fix to show.
+  CHECK(to_full("check clean --diff").first == 0);
+}
+
 TEST_CASE("matrix: unreadable files through the reader seam: config.g is a load problem, a macro a finding",
           "[cli][matrix]") {
   // A reader that answers "permission denied" for some files, as the disk reader does for a mode-000 file.
