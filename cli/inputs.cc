@@ -315,6 +315,7 @@ struct Planner {
       if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
         Job& j = job_for_card(*at.card, po.stdin_filename);
         j.only.insert(to_lower(*at.sd));
+        j.named.emplace(to_lower(*at.sd), po.stdin_filename);  // not linted (not G-code): says why
         j.stdin_bytes = std::move(bytes);
         j.stdin_sd_path = *at.sd;
         j.explicit_path = true;

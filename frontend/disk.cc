@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <set>
 #include <system_error>
 
 #include "frontend/platform.h"
@@ -268,8 +269,8 @@ DiskReader::DiskReader(fs::path root, fs::path sys_dir, fs::path display_base, s
       base_(absolute_normal(display_base)),
       dirs_(dirs ? std::move(dirs) : std::make_shared<DirCache>()) {}
 
-fs::path DiskReader::disk_dir(std::string_view sd_dir) const {
-  std::string d(sd_dir);
+fs::path DiskReader::disk_place(std::string_view sd_path) const {
+  std::string d(sd_path);
   if (to_lower(d) == "/sys" || to_lower(d).starts_with("/sys/"))
     return fs::path(sys_) / d.substr(std::min<size_t>(d.size(), 5));
   return fs::path(root_) / (d.starts_with("/") ? d.substr(1) : d);
@@ -312,12 +313,11 @@ ReadResult DiskReader::read(std::string_view sd_path) {
   ReadResult r;
   if (auto it = overlay_.find(to_lower(sd_path)); it != overlay_.end()) {
     r.status = ReadResult::Status::Ok;
-    r.bytes = it->second;
+    r.bytes = it->second.bytes;
     r.sd_path = std::string(sd_path);
-    auto where = locate(sd_path);
-    r.display = where ? fs::path(*where).lexically_relative(base_).generic_string() : std::string(sd_path);
-    if (!where)
-      r.display = (disk_dir("/sys") / std::string(sd_path).substr(5)).lexically_relative(base_).generic_string();
+    // A file not on disk yet (a new file in an editor or on stdin) is shown where it will be, in /sys or not.
+    const auto where = locate(sd_path);
+    r.display = (where ? fs::path(*where) : disk_place(it->second.sd_path)).lexically_relative(base_).generic_string();
     return r;
   }
   std::string spelled;
@@ -356,10 +356,12 @@ std::vector<std::string> DiskReader::list(std::string_view sd_dir) {
   if (!base.ends_with("/")) base += '/';
   // The folder may not exist on disk: a buffer from stdin or an editor placed in a card that is not there yet.
   if (dir && ::stat(dir->c_str(), &st) == 0 && S_ISDIR(st.st_mode)) list_below(*dir, base, 0, out);
-  for (const auto& [k, v] : overlay_)
-    if (k.starts_with(to_lower(base))) out.push_back(k);
+  // A file both on disk and overlaid is listed once, as the disk spells it; one not on disk as it was given.
+  std::set<std::string> listed;
+  for (const std::string& f : out) listed.insert(to_lower(f));
+  for (const auto& [key, file] : overlay_)
+    if (key.starts_with(to_lower(base)) && !listed.count(key)) out.push_back(file.sd_path);
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 

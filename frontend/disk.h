@@ -71,14 +71,22 @@ class DiskReader : public FileReader {
   /// spelled as the files on disk are.
   std::optional<std::string> locate(std::string_view sd_path, std::string* spelled = nullptr) const;
   /// Replaces a file's content (stdin, editor buffers).
-  void overlay(std::string sd_path, TextBuffer bytes) { overlay_[to_lower(sd_path)] = std::move(bytes); }
+  void overlay(std::string sd_path, TextBuffer bytes) {
+    std::string key = to_lower(sd_path);
+    overlay_[std::move(key)] = Overlaid{std::move(sd_path), std::move(bytes)};
+  }
 
  private:
-  std::filesystem::path disk_dir(std::string_view sd_dir) const;
+  /// Where an SD path is, or would be, on disk (it need not exist): below the sys folder for /sys/…, else the root.
+  std::filesystem::path disk_place(std::string_view sd_path) const;
   void list_below(const std::string& dir, const std::string& sd_prefix, int depth, std::vector<std::string>& out) const;
   std::string root_, sys_, base_;   // absolute and lexically normal
   std::shared_ptr<DirCache> dirs_;  // each folder listed once (a card asks for many missing tool macros)
-  std::map<std::string, TextBuffer> overlay_;
+  struct Overlaid {
+    std::string sd_path;  // as given: a file not on disk yet keeps its name's case
+    TextBuffer bytes;
+  };
+  std::map<std::string, Overlaid> overlay_;  // by lower-case SD path
 };
 
 /// Reads a whole file; nullopt with `error` set on failure.

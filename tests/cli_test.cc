@@ -468,6 +468,36 @@ TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found fr
   CHECK(t.read("p/sys/tool.g") == "G1 X0\n");
 }
 
+TEST_CASE(
+    "cli: stdin named as a file not on disk yet is shown where it will be, with its case; a name that is not "
+    "G-code says why",
+    "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\n");
+  t.write("p/macros/Old.g", "G28\n");
+  const std::string text = "M9999\n";
+  // New files in sys/, macros/ (with and without an extension) and filaments/: each at its own path, as named.
+  for (const std::string name : {"p/sys/New.g", "p/macros/Park.g", "p/macros/Wipe Nozzle", "p/filaments/PLA/load.g"}) {
+    INFO(name);
+    const auto o =
+        run_rrflint(t.root(), "check --format concise --stdin-filename " + shell_quote(name) + " -", "", text);
+    CHECK(o.code == 1);
+    CHECK(o.out.starts_with(name + ":1:1: warning:"));
+    CHECK(lines_of(o.out).size() == 1);
+  }
+  // A file on disk named in another case: linted once, as the disk spells it.
+  auto o = run_rrflint(t.root(), "check --format concise --stdin-filename p/macros/old.g -", "", text);
+  CHECK(o.out.starts_with("p/macros/Old.g:1:1: warning:"));
+  CHECK(lines_of(o.out).size() == 1);
+  // Not G-code (an extensionless file in sys/, a folder): an error that says so, not only "no file was linted".
+  for (const std::string name : {"p/sys/notes", "p/sys"}) {
+    INFO(name);
+    o = run_rrflint(t.root(), "check --stdin-filename " + name + " -", "", text);
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "error: " + name + ": not linted: not a G-code file"));
+  }
+}
+
 TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppress]") {
   TempTree t;
   t.write("p/sys/config.g",
