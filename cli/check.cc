@@ -283,9 +283,9 @@ struct JobRun {
     t.machines.push_back(MachineTarget{job.title, r.target});
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
       if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) t.inputs.push_back(std::move(*abs));
-    if (eff.config) t.inputs.insert(t.inputs.end(), eff.config->files.begin(), eff.config->files.end());
-    // Stdin stands for the file it is named as, which the report must not replace either.
-    if (job.stdin_bytes && !co.plan.stdin_filename.empty()) t.inputs.push_back(co.plan.stdin_filename);
+    if (eff.config)
+      for (const fs::path& f : eff.config->files) t.inputs.push_back(f.string());
+    if (job.stdin_bytes) t.inputs.push_back(co.plan.stdin_filename);  // the file it stands for (none: "")
     if (co.verbose) {
       const Target& tg = r.target;
       std::cerr << "rrflint: " << job.title << ": " << tg.reason << "; " << tg.board_reason << "\n";
@@ -370,7 +370,7 @@ int report_diff(std::ostream& os, const Totals& t, const CheckOptions& co, bool 
                              t.fixed_files, t.fixed_files == 1 ? "" : "s", more);
   else std::cerr << "rrflint: no fixes to apply" << more << "\n";
   if (io_error) return kExitError;
-  return t.fixed_files ? kExitFindings : kExitClean;
+  return t.fixed_files && !co.exit_zero ? kExitFindings : kExitClean;
 }
 
 // A report that could not be written whole (a full disk, a closed output) is an I/O error, never a pass.
@@ -479,11 +479,11 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
     return written(*os, co) ? rc : kExitError;
   }
 
-  // The fixed stdin text owns stdout; the report then goes to stderr.
-  if (t.stdout_text && co.output_file.empty()) {
+  // The fixed stdin text owns stdout, with -o too (an editor must get its text back); the report goes elsewhere.
+  if (t.stdout_text) {
     std::cout << *t.stdout_text;
     std::cout.flush();
-    os = &std::cerr;
+    if (co.output_file.empty()) os = &std::cerr;
   }
 
   // One report, one docs base: that of the first machine's settings (the command line's order), else the

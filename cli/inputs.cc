@@ -40,6 +40,8 @@ class Folders {
  public:
   // The entries of a folder (absolute, normal), listed once.
   const std::vector<DirEntry>& entries(const std::string& dir) { return dirs_->get(dir).entries; }
+  // Why a folder could not be listed; empty when it was.
+  const std::string& list_error(const std::string& dir) { return dirs_->get(dir).error; }
   // The listings, for the readers of the cards.
   const std::shared_ptr<DirCache>& dirs() const { return dirs_; }
 
@@ -259,6 +261,14 @@ struct Planner {
   }
 
   void walk(const std::string& dir, int depth, bool below_macros) {
+    // A folder that cannot be listed may hold a card: an error, never a pass over what it holds (unless
+    // .gitignore leaves it out anyway).
+    if (const std::string& why = folders.list_error(dir);
+        !why.empty() && !(po.respect_gitignore && gitignore.ignored(join_path(dir, kAnyChild)))) {
+      error(fmt::format("{}: cannot list the folder: {}", show(dir), why));
+      io_error = true;
+      return;
+    }
     for (const DirEntry& e : folders.entries(dir)) {
       std::string path = join_path(dir, e.name);
       if (e.kind == DirEntry::Kind::Dir) {

@@ -321,6 +321,16 @@ int main(int argc, char** argv) {
     error("--add-suppressions is an option of `rrflint check`");
     return kExitError;
   }
+  // The reason goes into a comment on each line: a line break, NUL or other control byte would end that line early
+  // in RRF and make the rest of the reason a command (and DEL makes RRF drop the whole line).
+  if (add_suppressions && std::any_of(add_suppressions->begin(), add_suppressions->end(), [](char ch) {
+        return (static_cast<unsigned char>(ch) < 0x20 && ch != '\t') || ch == 0x7f;
+      })) {
+    error(
+        "--add-suppressions: the reason must be one line of text, without control characters (it goes into a "
+        "comment on each line with a finding)");
+    return kExitError;
+  }
 
   if (c.rule->parsed() && (!c.man_file.empty() || !c.completion_file.empty()))
     return write_generated(app, c.man_file, c.completion_file);
@@ -332,6 +342,17 @@ int main(int argc, char** argv) {
     cli.select_given = sub->get_option("--select")->count() > 0;
     cli.extend_select_given = sub->get_option("--extend-select")->count() > 0;
     cli.ignore_given = sub->get_option("--ignore")->count() > 0;
+    // An empty value (`--select "$RULES"` with the variable unset) would turn every rule off, or the option silently
+    // back to its default: a usage error, as an unknown value is.
+    for (const char* name : {"--select", "--firmware", "--board"})
+      if (const CLI::Option* o = sub->get_option(name); o->count() > 0) {
+        const auto values = o->as<std::vector<std::string>>();
+        if (std::all_of(values.begin(), values.end(),
+                        [](const std::string& v) { return v.find_first_not_of(", ") == std::string::npos; })) {
+          error(fmt::format("{}: empty value", name));
+          return kExitError;
+        }
+      }
   }
   if (!validate(cli)) return kExitError;
 

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <cstring>
 #include <set>
 #include <system_error>
 
@@ -40,10 +41,12 @@ bool has_config(const std::vector<DirEntry>& entries) {
 
 #ifdef _WIN32
 // Windows: the folder through std::filesystem (the MSVC runtime has no dirent); its links are followed.
-std::vector<DirEntry> list_dir(const std::string& dir) {
+std::vector<DirEntry> list_dir(const std::string& dir, std::string* error) {
   std::vector<DirEntry> out;
   std::error_code ec;
-  for (fs::directory_iterator it(fs::path(dir), ec), end; !ec && it != end; it.increment(ec)) {
+  fs::directory_iterator it(fs::path(dir), ec);
+  if (ec && error) *error = ec.message();
+  for (fs::directory_iterator end; !ec && it != end; it.increment(ec)) {
     DirEntry entry{it->path().filename().string(), DirEntry::Kind::Other, it->is_symlink(ec)};
     if (it->is_regular_file(ec)) entry.kind = DirEntry::Kind::File;
     else if (it->is_directory(ec)) entry.kind = DirEntry::Kind::Dir;
@@ -52,10 +55,13 @@ std::vector<DirEntry> list_dir(const std::string& dir) {
   return out;
 }
 #else
-std::vector<DirEntry> list_dir(const std::string& dir) {
+std::vector<DirEntry> list_dir(const std::string& dir, std::string* error) {
   std::vector<DirEntry> out;
   DIR* d = ::opendir(dir.c_str());
-  if (!d) return out;
+  if (!d) {
+    if (error) *error = errno == EACCES ? "permission denied" : std::strerror(errno);
+    return out;
+  }
   while (const dirent* e = ::readdir(d)) {
     const std::string_view name(e->d_name);
     if (name == "." || name == "..") continue;
@@ -257,7 +263,7 @@ const DirCache::Listing& DirCache::get(const std::string& dir) {
   auto [it, fresh] = listings_.try_emplace(dir);
   if (fresh) {
     Listing& l = it->second;
-    l.entries = list_dir(dir);
+    l.entries = list_dir(dir, &l.error);
     for (size_t i = 0; i < l.entries.size(); ++i) l.by_lower.try_emplace(to_lower(l.entries[i].name), i);
   }
   return it->second;

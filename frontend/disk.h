@@ -23,8 +23,9 @@ struct DirEntry {
   Kind kind = Kind::Other;
   bool link = false;  // a symbolic link (to `kind`)
 };
-/// The entries of a folder (without "." and ".."), in the file system's order; empty when it cannot be read.
-std::vector<DirEntry> list_dir(const std::string& dir);
+/// The entries of a folder (without "." and ".."), in the file system's order; empty when it cannot be read, and
+/// then `error` (when given) says why ("Permission denied").
+std::vector<DirEntry> list_dir(const std::string& dir, std::string* error = nullptr);
 /// The entry called `name`: that exact name first, else the first that matches in any case (as FAT would);
 /// `kind` restricts both to one kind of entry.
 const DirEntry* find_entry(const std::vector<DirEntry>& entries, std::string_view name,
@@ -48,6 +49,7 @@ class DirCache {
  public:
   struct Listing {
     std::vector<DirEntry> entries;
+    std::string error;                                 // why the folder could not be listed (then `entries` is empty)
     std::unordered_map<std::string, size_t> by_lower;  // lower-cased name -> the first entry of that name
   };
   /// The listing of a folder (absolute, normal). Thread-safe.

@@ -519,6 +519,49 @@ TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppres
   CHECK(run_rrflint(t.root(), "check q --add-suppressions --fix").code == 2);
 }
 
+TEST_CASE("cli: --add-suppressions refuses a reason that would end the comment; the reason keeps a tab",
+          "[cli][suppress]") {
+  TempTree t;
+  const std::string config = "M584 X0 Y1 Z2\nM9999\n";
+  t.write("p/sys/config.g", config);
+  // A line break would make the rest of the reason a command (here a board reset); NUL ends the line in RRF too,
+  // and DEL makes RRF drop the whole line.
+  for (const std::string reason : {"why\\nM999 ; reset", "why\\rM999", "a\\001b", "a\\177b"}) {
+    INFO(reason);
+    const auto o = run_rrflint(t.root(), "check p --add-suppressions=\"$(printf '" + reason + "')\"");
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "the reason must be one line of text"));
+    CHECK(t.read("p/sys/config.g") == config);
+  }
+  CHECK(run_rrflint(t.root(), "check p --add-suppressions=\"$(printf 'old\\tboard')\"").code == 0);
+  CHECK(t.read("p/sys/config.g") == "M584 X0 Y1 Z2\nM9999 ; rrflint: disable=unknown-command -- old\tboard\n");
+}
+
+TEST_CASE("cli: --fix on stdin with -o FILE still hands the fixed text back on stdout", "[cli]") {
+  TempTree t;
+  const auto o = run_rrflint(t.root(), "check --fix -o report.txt -", "", "M584 X0 Y1 Z2E3\nG1 X0\n");
+  CHECK(o.code == 0);
+  CHECK(o.out == "M584 X0 Y1 Z2 E3\nG1 X0\n");
+  CHECK(contains(t.read("report.txt"), "Fixed 1 finding."));
+}
+
+TEST_CASE("cli: --diff honours --exit-zero; an empty --select, --firmware or --board is a usage error", "[cli]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2E3\n");
+  CHECK(run_rrflint(t.root(), "check --diff p").code == 1);
+  auto o = run_rrflint(t.root(), "check --diff --exit-zero p");
+  CHECK(o.code == 0);
+  CHECK(contains(o.out, "+M584 X0 Y1 Z2 E3"));
+  // `--select "$RULES"` with the variable unset would turn every rule off and pass.
+  for (const std::string args : {"--select ''", "--select ' , '", "--firmware ''", "--board ''"}) {
+    INFO(args);
+    o = run_rrflint(t.root(), "check p " + args);
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, ": empty value"));
+  }
+  CHECK(run_rrflint(t.root(), "check p --ignore ''").code == 1);  // ignores nothing: the findings stay
+}
+
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");

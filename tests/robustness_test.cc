@@ -216,6 +216,33 @@ TEST_CASE("matrix: unreadable files (run as nobody)", "[cli][matrix]") {
   CHECK(contains(o.err, "permission denied"));
 }
 
+TEST_CASE("matrix: a folder that cannot be listed is an error, never a pass over what it holds (run as nobody)",
+          "[cli][matrix]") {
+  TempTree t;
+  // A card whose sys/ can be entered but not listed: its config.g is never found, and only the macro would be linted.
+  t.write("c/sys/config.g", "G10 P9 X0\nM584 X0 Y1 Z2\n");
+  t.write("c/macros/park.g", "G1 X0\n");
+  t.write("w/ok.g", "G1 X0\n");
+  t.write("w/sub/h.g", "G1 X0\n");
+  for (const char* d : {"c", "c/macros", "w"}) ::chmod((t / d).c_str(), 0755);
+  ::chmod((t / "c/sys").c_str(), 0711);
+  ::chmod((t / "w/sub").c_str(), 0);
+  if (!can_drop_privileges(t)) return;
+  auto o = run_unprivileged(t, "check c");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: c/sys: cannot list the folder: permission denied"));
+  o = run_unprivileged(t, "check w");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: w/sub: cannot list the folder: permission denied"));
+  // One that .gitignore leaves out is not walked anyway.
+  t.write("w/.gitignore", "sub/\n");
+  ::chmod((t / "w/.gitignore").c_str(), 0644);
+  o = run_unprivileged(t, "check w");
+  CHECK(o.code == 0);
+  ::chmod((t / "c/sys").c_str(), 0755);
+  ::chmod((t / "w/sub").c_str(), 0755);
+}
+
 TEST_CASE("matrix: binary and text with bad bytes", "[cli][matrix]") {
   TempTree t;
   t.write("c/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"bin.g\"\n");
