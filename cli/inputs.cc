@@ -223,8 +223,9 @@ struct Planner {
   bool& io_error;
   PlanStats& stats;
   const std::string cwd = current_folder();
-  std::map<std::string, size_t> by_root;           // canonical sys folder -> job
-  std::unordered_map<std::string, size_t> by_sys;  // sys folder as the card gave it -> job
+  std::map<std::string, size_t> by_root;                 // canonical sys folder -> job
+  std::unordered_map<std::string, size_t> by_sys;        // sys folder as the card gave it -> job
+  std::unordered_map<std::string, size_t> lone_by_real;  // a lone file's real path -> job
   Folders folders;
   // Files and folders met in a walk (absolute, normal); `link`: the file is a symbolic link.
   std::vector<std::string> found;
@@ -252,7 +253,13 @@ struct Planner {
     return jobs[it->second];
   }
 
+  // A lone file, once however often and by whatever path it is named (x.g ./x.g, or named and also walked).
   void lone(const fs::path& file, const std::string& title, bool explicit_path) {
+    const auto [it, fresh] = lone_by_real.try_emplace(folders.real_path(absolute_normal(file)), jobs.size());
+    if (!fresh) {
+      jobs[it->second].explicit_path = jobs[it->second].explicit_path || explicit_path;
+      return;
+    }
     Job j;
     j.standalone = file;
     j.title = title;
@@ -388,7 +395,7 @@ struct Planner {
       ++placed;
       const Folders::Place at = folders.place(f, link[i]);
       if (!at.card || !at.sd || !machine_path(*at.sd)) {
-        lone(f, show(f), false);
+        lone(show(f), show(f), false);  // shown and read by the path from here, as a named file is
         continue;
       }
       Job& j = job_for_card(*at.card, show(at.card->root.string()));

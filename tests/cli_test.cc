@@ -562,6 +562,23 @@ TEST_CASE("cli: --diff honours --exit-zero; an empty --select, --firmware or --b
   CHECK(run_rrflint(t.root(), "check p --ignore ''").code == 1);  // ignores nothing: the findings stay
 }
 
+TEST_CASE("cli: a lone file is shown by its path from here when walked, and linted once however often it is named",
+          "[cli][walk]") {
+  TempTree t;
+  t.write("w/x.g", "M584 X0 Y1 Z2E3\n");
+  auto o = run_rrflint(t.root(), "check --format concise w");
+  CHECK(o.out.starts_with("w/x.g:1:14: warning:"));
+  o = run_rrflint(t.root(), "check --diff w");
+  CHECK(o.out.starts_with("--- a/w/x.g\n+++ b/w/x.g\n"));
+  o = run_rrflint(t.root(), "check --format concise w/x.g ./w/x.g w/../w/x.g w");
+  CHECK(o.code == 1);
+  CHECK(lines_of(o.out).size() == 1);
+  o = run_rrflint(t.root() / "w", "check --fix x.g x.g");
+  CHECK(o.code == 0);
+  CHECK(contains(o.out, "No problems found in 1 file."));
+  CHECK(t.read("w/x.g") == "M584 X0 Y1 Z2 E3\n");
+}
+
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
