@@ -236,12 +236,25 @@ int run_model(const CliOptions& cli, const std::string& model_path, const std::s
   std::vector<Job> jobs;
   bool io_error = false;
   GitIgnore gitignore;
-  plan({model_path}, PlanOptions{}, settings, gitignore, jobs, io_error);
+  PlanStats stats;
+  plan({model_path}, PlanOptions{}, settings, gitignore, jobs, io_error, &stats);
   if (settings.config_error()) {
     error(settings.config_error()->str());
     return kExitError;
   }
-  if (io_error || jobs.empty()) return kExitError;
+  if (jobs.empty() && !io_error) {
+    for (const std::string& why : stats.empty) error(why);
+    if (stats.empty.empty()) error(fmt::format("{}: no G-code file to build a model from", model_path));
+  }
+  // One model per run: a folder of several machines (a repository of configs) names none of them.
+  if (jobs.size() > 1) {
+    std::vector<std::string> titles;
+    for (const Job& j : jobs) titles.push_back(j.title);
+    std::sort(titles.begin(), titles.end());
+    error(fmt::format("{} holds {} machines ({}): name one of them (its folder or its config.g)", model_path,
+                      jobs.size(), fmt::join(titles, ", ")));
+  }
+  if (io_error || jobs.size() != 1) return kExitError;
   const Job& job = jobs.front();
   Effective eff;
   if (!settings.effective(job.card ? job.card->sys_dir : job.standalone.parent_path(), eff)) {

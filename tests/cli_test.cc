@@ -579,6 +579,23 @@ TEST_CASE("cli: a lone file is shown by its path from here when walked, and lint
   CHECK(t.read("w/x.g") == "M584 X0 Y1 Z2 E3\n");
 }
 
+TEST_CASE("cli: model of a folder with no machine, or with several, says so", "[cli][model]") {
+  TempTree t;
+  fs::create_directories(t / "empty");
+  t.write("s/a/sys/config.g", "M584 X0 Y1 Z2\n");
+  t.write("s/b/sys/config.g", "M584 X0 Y1 Z2\n");
+  auto o = run_rrflint(t.root(), "model empty");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: empty: no G-code here"));
+  o = run_rrflint(t.root(), "model s");
+  CHECK(o.code == 2);
+  CHECK(o.out.empty());
+  CHECK(contains(o.err, "error: s holds 2 machines (s/a, s/b): name one of them"));
+  o = run_rrflint(t.root(), "model s/b");
+  CHECK(o.code == 0);
+  CHECK(o.out.starts_with("Machine: s/b\n"));
+}
+
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
