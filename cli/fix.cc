@@ -230,14 +230,14 @@ bool write_atomic(const fs::path& path, const std::string& expected, const std::
 
 namespace {
 
-// Lines with their terminators, so a diff reproduces the bytes exactly.
+// Lines to their line feeds (a CR is part of its line), so a diff reproduces the bytes exactly.
 std::vector<std::string_view> split_keep(std::string_view s) {
   std::vector<std::string_view> out;
   size_t b = 0;
   while (b < s.size()) {
     size_t e = b;
-    while (e < s.size() && s[e] != '\n' && s[e] != '\r') ++e;
-    if (e < s.size()) e += (s[e] == '\r' && e + 1 < s.size() && s[e + 1] == '\n') ? 2 : 1;
+    while (e < s.size() && s[e] != '\n') ++e;
+    if (e < s.size()) ++e;
     out.push_back(s.substr(b, e - b));
     b = e;
   }
@@ -285,15 +285,12 @@ std::vector<Op> diff_ops(const std::vector<std::string_view>& a, const std::vect
   return ops;
 }
 
+// A line as it is, to its line feed: `git apply` and `patch` split a file at line feeds only, so a lone CR (a file
+// saved with CR line endings) stays inside its line, as diff(1) shows it.
 void emit_line(std::string& out, char kind, std::string_view line) {
   out += kind;
-  if (line.ends_with("\r\n") || line.ends_with("\n") || line.ends_with("\r")) {
-    out += line;
-    if (line.ends_with("\r")) out += '\n';  // keep the diff itself line-based
-  } else {
-    out += line;
-    out += "\n\\ No newline at end of file\n";
-  }
+  out += line;
+  if (!line.ends_with('\n')) out += "\n\\ No newline at end of file\n";
 }
 
 }  // namespace
@@ -303,7 +300,9 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
   const auto a = split_keep(before), b = split_keep(after);
   const std::vector<Op> ops = diff_ops(a, b);
   constexpr size_t kContext = 3;
-  std::string out = fmt::format("--- a/{}\n+++ b/{}\n", path, path);
+  // A name with a space ends with a tab, as git writes it, so that patch(1) reads the whole name.
+  const char* tab = path.find(' ') != std::string::npos ? "\t" : "";
+  std::string out = fmt::format("--- a/{}{}\n+++ b/{}{}\n", path, tab, path, tab);
   size_t k = 0;
   while (k < ops.size()) {
     if (ops[k].kind == ' ') {

@@ -426,6 +426,27 @@ TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there
   CHECK(o.out.empty());
 }
 
+TEST_CASE("cli: --diff applies to files with CR line endings and to names with spaces", "[cli][fix]") {
+  TempTree t;
+  // CR-only (RRF107 rewrites the endings), a lone CR inside an LF file, and a card folder with a space in its name.
+  t.write("a/sys/config.g", "M550 P\"Bob's\"\rM584 X0 Y1 Z2E3\r");
+  t.write("b/sys/config.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\r; note\n");
+  t.write("my card/sys/config.g", "M584 X0 Y1 Z2E3\n");
+  auto o = run_rrflint(t.root(), "check --diff .");
+  CHECK(o.code == 1);
+  CHECK(contains(o.out, "--- a/my card/sys/config.g\t\n+++ b/my card/sys/config.g\t\n"));
+  t.write("fix.diff", o.out);
+  TempTree fixed;  // what --fix writes, for comparison
+  for (const char* f : {"a/sys/config.g", "b/sys/config.g", "my card/sys/config.g"}) fixed.write(f, t.read(f));
+  run_rrflint(fixed.root(), "check --fix .");
+  REQUIRE(std::system(("cd " + shell_quote(t.root().string()) + " && git apply -p1 fix.diff").c_str()) == 0);
+  for (const char* f : {"a/sys/config.g", "b/sys/config.g", "my card/sys/config.g"}) {
+    INFO(f);
+    CHECK(t.read(f) == fixed.read(f));
+  }
+  CHECK(t.read("a/sys/config.g") != "M550 P\"Bob's\"\rM584 X0 Y1 Z2E3\r");
+}
+
 TEST_CASE("cli: unsafe fixes only with --unsafe-fixes", "[cli][fix]") {
   TempTree t;
   const std::string before = "M584 X0 Y1 Z2 E3\nG10 P0 X0 Y0 Z0\nM563 P0 D0\n";
