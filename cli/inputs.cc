@@ -65,17 +65,17 @@ class Folders {
     const CardLocation* card = nullptr;
     std::optional<std::string> sd;
   };
-  // The card of a file (absolute, normal) and its SD path there; `link`: the file may be a symbolic link (else
-  // its SD path is its folder's and its name).
-  Place place(const std::string& file, bool link) {
+  // The card of a file (absolute, normal) and its SD path there: its folder's and its name. A symbolic link is a
+  // file of the card it lies in, wherever it points (the card as laid out; --fix never writes through it to a file
+  // outside the card).
+  Place place(const std::string& file) {
     auto [it, fresh] = folders_.try_emplace(parent_of(file));
     Folder& f = it->second;
     if (fresh && (f.card = card_for(it->first))) f.sd = sd_of(*f.card, real_path(it->first));
     Place p;
     if (!f.card) return p;
     p.card = &*f.card;
-    if (link) p.sd = sd_of(*f.card, real_path(file));
-    else if (f.sd) p.sd = join_path(*f.sd, name_of(file));
+    if (f.sd) p.sd = join_path(*f.sd, name_of(file));
     return p;
   }
 
@@ -140,7 +140,7 @@ class Folders {
 
 std::optional<FilePlace> place_file(const std::string& abs) {
   Folders folders;
-  const Folders::Place at = folders.place(abs, true);
+  const Folders::Place at = folders.place(abs);
   if (!at.card || !at.sd || !machine_path(*at.sd)) return std::nullopt;
   return FilePlace{CardLocation{absolute_normal(at.card->root), absolute_normal(at.card->sys_dir)}, *at.sd};
 }
@@ -227,9 +227,8 @@ struct Planner {
   std::unordered_map<std::string, size_t> by_sys;        // sys folder as the card gave it -> job
   std::unordered_map<std::string, size_t> lone_by_real;  // a lone file's real path -> job
   Folders folders;
-  // Files and folders met in a walk (absolute, normal); `link`: the file is a symbolic link.
+  // Files met in a walk (absolute, normal).
   std::vector<std::string> found;
-  std::vector<bool> link;
   bool walk_excludes = true;  // apply `exclude` in this walk (off for a folder named on purpose, see add_folder)
 
   std::string show(const std::string& abs) const {
@@ -287,7 +286,6 @@ struct Planner {
         walk(path, depth + 1, below_macros || to_lower(e.name) == "macros");
       } else if (e.kind == DirEntry::Kind::File && candidate(e.name, below_macros)) {
         found.push_back(std::move(path));
-        link.push_back(e.link);
       }
     }
   }
@@ -329,7 +327,7 @@ struct Planner {
         lone_stdin(true);
         return;
       }
-      if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+      if (auto at = folders.place(abs); at.card && at.sd && machine_path(*at.sd)) {
         Job& j = job_for_card(*at.card, po.stdin_filename);
         j.only.insert(to_lower(*at.sd));
         j.named.emplace(to_lower(*at.sd), po.stdin_filename);  // not linted (not G-code): says why
@@ -376,7 +374,6 @@ struct Planner {
     bool below_macros = false;
     for (const fs::path& part : path) below_macros = below_macros || to_lower(part.string()) == "macros";
     found.clear();
-    link.clear();
     walk_excludes = !folder_excluded;
     const size_t folders_before = stats.excluded;
     walk(abs, 0, below_macros);
@@ -393,7 +390,7 @@ struct Planner {
         continue;
       }
       ++placed;
-      const Folders::Place at = folders.place(f, link[i]);
+      const Folders::Place at = folders.place(f);
       if (!at.card || !at.sd || !machine_path(*at.sd)) {
         lone(show(f), show(f), false);  // shown and read by the path from here, as a named file is
         continue;
@@ -425,7 +422,7 @@ struct Planner {
       io_error = true;
       return;
     }
-    if (auto at = folders.place(abs, true); at.card && at.sd && machine_path(*at.sd)) {
+    if (auto at = folders.place(abs); at.card && at.sd && machine_path(*at.sd)) {
       Job& j = job_for_card(*at.card, p);
       j.only.insert(to_lower(*at.sd));
       j.named.emplace(to_lower(*at.sd), p);

@@ -400,6 +400,25 @@ TEST_CASE("cli: --fix writes through symbolic links inside the linted folder", "
   CHECK(t.read("p/shared/config.g") == "M584 X0 Y1 Z2\nG1 X0\n");
 }
 
+TEST_CASE("cli: a symbolic link in sys/ to another card's file is a file of its own card, linted once", "[cli][walk]") {
+  TempTree t;
+  t.write("a/sys/config.g", "M98 P\"common.g\"\n");
+  t.write("b/sys/config.g", "M98 P\"common.g\"\n");
+  t.write("a/sys/common.g", "M584 X0 Y1 Z2E3\n");
+  fs::create_symlink("../../a/sys/common.g", t / "b/sys/common.g");
+  auto o = run_rrflint(t.root(), "check --format concise .");
+  CHECK(o.code == 1);
+  const auto lines = lines_of(o.out);
+  REQUIRE(lines.size() == 2);
+  CHECK(lines[0].starts_with("a/sys/common.g:1:14: warning:"));
+  CHECK(lines[1].starts_with("b/sys/common.g:1:14: warning:"));
+  // Named on its own, it is linted as b's /sys/common.g, not as a lone file: no note about a file with no card.
+  o = run_rrflint(t.root(), "check --format concise b/sys/common.g");
+  CHECK(o.out.starts_with("b/sys/common.g:1:14: warning:"));
+  CHECK(lines_of(o.out).size() == 1);
+  CHECK_FALSE(contains(o.err, "no SD card around it"));
+}
+
 TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there is something to fix", "[cli][fix]") {
   TempTree t;
   const std::string before = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\nG1 Y0\n";
