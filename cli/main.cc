@@ -140,9 +140,10 @@ void add_common(CLI::App* sub, CliOptions& cli) {
       ->delimiter(',')
       ->allow_extra_args(false);
   sub->add_flag("--tool-changer", cli.tool_changer, "The machine is a tool changer (evidence for RRF305)");
-  sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml")
-      ->type_name("FILE");
-  sub->add_flag("--isolated", cli.isolated, "Ignore every config file");
+  CLI::Option* config =
+      sub->add_option("--config", cli.config_path, "Use this config file instead of discovering .rrflint.toml")
+          ->type_name("FILE");
+  sub->add_flag("--isolated", cli.isolated, "Ignore every config file")->excludes(config);
   sub->add_flag("--no-inline-suppressions", cli.no_inline_suppressions,
                 "Ignore `; rrflint: disable…` comments (for CI that forbids them)");
 }
@@ -212,9 +213,10 @@ void add_model_rule_config(CLI::App& app, Commands& c) {
   rule->add_option("--readme", ro.readme, "With --generate-docs: also rewrite this README's rule list")
       ->type_name("FILE");
   rule->add_flag("--check", ro.check, "With --generate-docs: write nothing, exit 1 when a file is stale");
-  rule->add_option("--config", c.cli.config_path, "With --format json: the config file whose docs-url the links follow")
-      ->type_name("FILE");
-  rule->add_flag("--isolated", c.cli.isolated, "Ignore every config file");
+  CLI::Option* rule_config = rule->add_option("--config", c.cli.config_path,
+                                              "With --format json: the config file whose docs-url the links follow")
+                                 ->type_name("FILE");
+  rule->add_flag("--isolated", c.cli.isolated, "Ignore every config file")->excludes(rule_config);
   rule->add_option("--generate-man", c.man_file, "Write the man page rrflint.1 to this file (the build does)")
       ->type_name("FILE");
   rule->add_option("--generate-completion", c.completion_file, "Write the bash completion script to this file")

@@ -19,7 +19,7 @@ std::string show_path(const fs::path& p) {
   std::error_code ec;
   const fs::path cwd = fs::current_path(ec);
   if (!ec)
-    if (auto rel = relative_below(p, cwd)) return *rel;
+    if (auto rel = relative_below(p, cwd)) return rel->empty() ? std::string(".") : *rel;
   return p.generic_string();
 }
 
@@ -68,9 +68,12 @@ struct Loader {
     std::error_code ec;
     abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
     if (!fs::is_regular_file(abs, ec)) {
-      if (from) return fail(from_file, *from, fmt::format("'extend': {}: no such file", show_path(abs)));
+      const std::string why = fs::is_directory(abs, ec) ? "is a folder, not a config file"
+                              : fs::exists(abs, ec)     ? "is not a regular file"
+                                                        : "no such file";
+      if (from) return fail(from_file, *from, fmt::format("'extend': {}: {}", show_path(abs), why));
       err.file = abs;
-      err.message = "no such file";
+      err.message = why;
       return false;
     }
     if (!visiting.insert(abs.string()).second) {

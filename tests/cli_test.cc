@@ -636,6 +636,24 @@ TEST_CASE("cli: model of a folder with no machine, or with several, says so", "[
   CHECK(o.out.starts_with("Machine: s/b\n"));
 }
 
+TEST_CASE("cli: --config names what is wrong with the file; --isolated with --config is a usage error",
+          "[cli][config]") {
+  TempTree t;
+  t.write("p/sys/config.g", "M584 X0 Y1 Z2\n");
+  auto o = run_rrflint(t.root(), "check --config . p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: .: is a folder, not a config file"));
+  o = run_rrflint(t.root(), "check --config /dev/null p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: /dev/null: is not a regular file"));
+  o = run_rrflint(t.root(), "check --config nope.toml p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: nope.toml: no such file"));
+  o = run_rrflint(t.root(), "check --isolated --config nope.toml p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "--config excludes --isolated"));
+}
+
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
