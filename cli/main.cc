@@ -85,8 +85,16 @@ std::optional<std::string> take_add_suppressions(std::vector<std::string>& args)
   return add_suppressions;
 }
 
-// An unknown command gets its own message (CLI11 would say that a subcommand is required). False after it.
+// An unknown command gets its own message (CLI11 would say that a subcommand is required), and so does an option
+// before any command (`rrflint --select X`: the options belong to a command). False after it.
 bool known_command(const std::vector<std::string>& args) {
+  if (args.size() > 1 && args[1].starts_with("-") && args[1] != "-h" && args[1] != "--help" && args[1] != "--version") {
+    error(
+        fmt::format("unknown option '{}' before a command: options follow the command, as in `rrflint check {} …` "
+                    "(see `rrflint --help`)",
+                    args[1], args[1]));
+    return false;
+  }
   if (args.size() > 1 && !args[1].starts_with("-")) {
     static const char* const kCommands[][2] = {{"check", "lint SD cards, sys folders, repositories or files"},
                                                {"config", "print the effective settings and where each came from"},
@@ -330,7 +338,7 @@ int main(int argc, char** argv) {
     app.parse(static_cast<int>(argv2.size()), argv2.data());
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
-    return code == 0 ? kExitClean : kExitError;
+    return code == 0 ? written(kExitClean) : kExitError;  // --help and --version are output too
   }
   if (add_suppressions && !c.check->parsed()) {
     error("--add-suppressions is an option of `rrflint check`");

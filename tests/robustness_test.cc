@@ -488,6 +488,10 @@ TEST_CASE("matrix: --firmware spellings and unknown commands", "[cli][matrix]") 
   CHECK(contains(o.err, "unknown command 'explain'"));
   CHECK(contains(o.err, "check"));
   CHECK(contains(o.err, "rule"));
+  o = run_guarded(t.root(), "--select RRF301 check p");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "unknown option '--select' before a command"));
+  CHECK(run_guarded(t.root(), "--version").code == 0);
 }
 
 TEST_CASE("matrix: --fix never writes a read-only file, through a link out of the root, or over a full disk",
@@ -692,9 +696,9 @@ TEST_CASE("matrix: output that cannot be written is an I/O error (exit 2), never
   };
   // A full disk: the report to a file and to stdout, with findings, with none and with --exit-zero; the other
   // subcommands' output.
-  for (const std::string args :
-       {"check p -o /dev/full", "check p", "check p --exit-zero", "check clean",
-        "check clean --format json -o /dev/full", "check --format sarif p", "model p", "rule RRF301", "config p"}) {
+  for (const std::string args : {"check p -o /dev/full", "check p", "check p --exit-zero", "check clean",
+                                 "check clean --format json -o /dev/full", "check --format sarif p", "model p",
+                                 "rule RRF301", "config p", "--help", "--version"}) {
     INFO(args);
     const auto [code, err] = to_full(args);
     CHECK(code == 2);
