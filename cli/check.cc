@@ -26,23 +26,13 @@ struct Totals {
   size_t linted = 0;       // files linted and reported on (never 0 in a run that passes)
   bool lone_hint = false;  // a lone file or stdin was linted with no card around it (say so once)
   size_t files = 0, fixed = 0, fixed_files = 0, suppressions = 0, suppressed_files = 0;
+  size_t left_out = 0;  // files of cards linted whole that exclude or .gitignore left out of the report
   bool failing = false, io_error = false;
   std::string diff;
   std::optional<std::string> stdout_text;  // fixed or annotated stdin
   std::vector<MachineTarget> machines;     // each linted machine's firmware target (json)
   std::vector<std::string> inputs;         // the files on disk this run read: no report may be written over one
 };
-
-// The settings of a job's machine: its sys folder (or a lone file's folder) finds the governing config.
-// False on a config or option error.
-bool job_settings(const Job& job, Settings& settings, unsigned threads, Effective& eff) {
-  std::error_code ec;
-  fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
-  if (dir.empty()) dir = fs::current_path(ec);
-  if (!settings.effective(dir, eff)) return false;
-  eff.lint.threads = threads;
-  return true;
-}
 
 // The threads of one run: --jobs, or the default.
 unsigned co_threads(const CheckOptions& co) { return co.jobs > 0 ? co.jobs : default_threads(); }
@@ -267,7 +257,7 @@ struct JobRun {
   // The findings to report go to the totals; --verbose prints the target and its evidence.
   void collect() {
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-      if (reportable(*r.machine->unit(i).source)) ++t.files;
+      ++(reportable(*r.machine->unit(i).source) ? t.files : t.left_out);
     std::erase_if(r.diagnostics,
                   [&](const Diagnostic& d) { return d.loc.file != kNoFile && !reportable(sm.get(d.loc.file)); });
     for (const Diagnostic& d : r.diagnostics) t.failing = t.failing || d.severity >= eff.fail_on;
@@ -353,6 +343,8 @@ int nothing_linted(const Totals& t, const PlanStats& stats, bool io_error) {
   }
   if (t.stdout_text) std::cout << *t.stdout_text;  // --fix on stdin: an editor must get its text back
   for (const std::string& why : stats.empty) error(why);
+  if (stats.empty.empty() && t.left_out)
+    error("every file of the cards given is left out by `exclude` or .gitignore (name a file to lint it anyway)");
   error("no file was linted");
   return kExitError;
 }

@@ -274,6 +274,9 @@ struct CheckOptions {
 
 /// The threads a run uses without --jobs: the CPU count, at most 8.
 unsigned default_threads();
+/// The settings of a job's machine (its sys folder, or a lone file's folder, finds the governing config), to lint
+/// on `threads` threads. False on a config or option error.
+bool job_settings(const Job& job, Settings& settings, unsigned threads, Effective& eff);
 
 int run_check(const CliOptions& cli, const CheckOptions& co);
 /// Options of `check` that do not go together (--add-suppressions with --fix, --statistics with --diff or a format

@@ -267,11 +267,10 @@ int run_model(const CliOptions& cli, const std::string& model_path, const std::s
   if (io_error || jobs.size() != 1) return kExitError;
   const Job& job = jobs.front();
   Effective eff;
-  if (!settings.effective(job.card ? job.card->sys_dir : job.standalone.parent_path(), eff)) {
+  if (!job_settings(job, settings, default_threads(), eff)) {
     error(settings.config_error()->str());
     return kExitError;
   }
-  eff.lint.threads = default_threads();
   SourceManager sm;
   JobReader reader(job);
   MachineResult r = lint_machine(sm, reader, builtin_rules(), eff.lint);

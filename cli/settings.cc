@@ -302,6 +302,15 @@ void print_rules(std::ostream& os, const CliOptions& cli, const Config* cfg) {
 
 }  // namespace
 
+bool job_settings(const Job& job, Settings& settings, unsigned threads, Effective& eff) {
+  std::error_code ec;
+  fs::path dir = job.card ? job.card->sys_dir : job.standalone.parent_path();
+  if (dir.empty()) dir = fs::current_path(ec);
+  if (!settings.effective(dir, eff)) return false;
+  eff.lint.threads = threads;
+  return true;
+}
+
 unsigned default_threads() { return std::max(1u, std::min(8u, std::thread::hardware_concurrency())); }
 
 bool use_color(const std::string& mode, int fd) {

@@ -654,6 +654,16 @@ TEST_CASE("cli: --config names what is wrong with the file; --isolated with --co
   CHECK(contains(o.err, "--config excludes --isolated"));
 }
 
+TEST_CASE("cli: a card whose every file is excluded says so; named, its file is linted", "[cli][walk]") {
+  TempTree t;
+  t.write("c/sys/config.g", "M584 X0 Y1 Z2E3\n");
+  t.write("c/.rrflint.toml", "exclude = [\"sys/config.g\"]\n");
+  auto o = run_rrflint(t.root(), "check c");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "error: every file of the cards given is left out by `exclude` or .gitignore"));
+  CHECK(run_rrflint(t.root(), "check c/sys/config.g").code == 1);
+}
+
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
