@@ -257,7 +257,8 @@ struct JobRun {
   // The findings to report go to the totals; --verbose prints the target and its evidence.
   void collect() {
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
-      ++(reportable(*r.machine->unit(i).source) ? t.files : t.left_out);
+      if (reportable(*r.machine->unit(i).source)) ++t.files;
+      else if (job.report_all) ++t.left_out;  // (a card's other files are not reported when one file is named)
     std::erase_if(r.diagnostics,
                   [&](const Diagnostic& d) { return d.loc.file != kNoFile && !reportable(sm.get(d.loc.file)); });
     for (const Diagnostic& d : r.diagnostics) t.failing = t.failing || d.severity >= eff.fail_on;

@@ -662,6 +662,12 @@ TEST_CASE("cli: a card whose every file is excluded says so; named, its file is 
   CHECK(o.code == 2);
   CHECK(contains(o.err, "error: every file of the cards given is left out by `exclude` or .gitignore"));
   CHECK(run_rrflint(t.root(), "check c/sys/config.g").code == 1);
+  // A named file that is not G-code is not "left out": the card's other files are simply not reported.
+  t.write("c/sys/notes", "x\n");
+  o = run_rrflint(t.root(), "check c/sys/notes");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "c/sys/notes: not linted: not a G-code file"));
+  CHECK_FALSE(contains(o.err, "left out"));
 }
 
 TEST_CASE("cli: a repository walk finds every card, lone files and extensionless macros", "[cli][walk]") {
