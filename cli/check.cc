@@ -29,9 +29,11 @@ struct Totals {
   size_t left_out = 0;  // files of cards linted whole that exclude or .gitignore left out of the report
   bool failing = false, io_error = false;
   std::string diff;
+  std::set<std::string> diffs;             // each file's part of `diff`, to give it once
   std::optional<std::string> stdout_text;  // fixed or annotated stdin
   std::vector<MachineTarget> machines;     // each linted machine's firmware target (json)
   std::vector<std::string> inputs;         // the files on disk this run read: no report may be written over one
+  std::vector<fs::path> roots;             // the folders named (PlanStats::roots), for write_atomic
 };
 
 // The threads of one run: --jobs, or the default.
@@ -66,43 +68,6 @@ std::vector<std::unique_ptr<Prelinted>> lint_ahead(const std::vector<Job>& jobs,
     }
   });
   return out;
-}
-
-// What a job could not lint. A config.g that cannot be linted makes the card an error (exit 2), and so does a file
-// named on the command line that was not linted; other files that cannot be linted are findings (RRF506). The
-// caller counts the files linted (Totals::linted), so that a run over nothing never passes.
-void note_unlinted(const Job& job, const Effective& eff, const Machine& m, Totals& t) {
-  const std::string config = to_lower(eff.lint.sys_dir + "/config.g");
-  std::set<std::string> linted;
-  for (uint32_t i = 0; i < m.unit_count(); ++i) linted.insert(to_lower(m.unit(i).sd_path));
-  for (const LoadProblem& p : m.problems()) {
-    const std::string sd = to_lower(p.sd_path);
-    if (sd == config &&
-        (job.card || job.standalone.empty() || to_lower(job.standalone.filename().string()) == "config.g")) {
-      error(fmt::format("{}: cannot lint config.g: {}", p.display, p.message));
-      t.io_error = true;
-    } else if (job.named.count(sd) || (!job.card && job.explicit_path)) {
-      error(fmt::format("{}: {}", p.display, p.message));
-      t.io_error = true;
-    }
-  }
-  for (const auto& [named_sd, as_named] : job.named)
-    if (const std::string& sd = named_sd;  // a structured binding: clang 14 lets no lambda capture one
-        !linted.count(sd) && std::none_of(m.problems().begin(), m.problems().end(),
-                                          [&](const LoadProblem& p) { return to_lower(p.sd_path) == sd; })) {
-      error(
-          fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files, and macros without an extension "
-                      "below macros/)",
-                      as_named));
-      t.io_error = true;
-    }
-  if (!job.card && m.unit_count() == 0 && m.problems().empty() && job.explicit_path) {
-    error(fmt::format("{}: not linted: not a G-code file (rrflint lints *.g files)", job.title));
-    t.io_error = true;
-  }
-  if (!job.card && job.explicit_path && m.unit_count() > 0 &&
-      to_lower(job.standalone.filename().string()) != "config.g")
-    t.lone_hint = true;
 }
 
 // One job once its settings are known: lint (unless linted ahead), then the requested rewrite, then collect what
@@ -148,7 +113,7 @@ struct JobRun {
         if (auto abs = reader.disk_path(r.machine->unit(i).sd_path)) files.push_back(std::move(*abs));
       gitignore.prefetch(files);
     }
-    note_unlinted(job, eff, *r.machine, t);
+    if (note_unlinted(job, eff, *r.machine, t.lone_hint)) t.io_error = true;
     if (r.graph.truncated) warning(truncated_warning(job.title, eff.lint.max_graph_nodes));
     for (uint32_t i = 0; i < r.machine->unit_count(); ++i)
       if (reportable(*r.machine->unit(i).source)) ++t.linted;
@@ -181,6 +146,14 @@ struct JobRun {
     return fixed;
   }
 
+  // Where a fix may write through a symbolic link: below a folder named on the command line, the job's card or a
+  // lone file's folder.
+  std::vector<fs::path> write_roots() const {
+    std::vector<fs::path> roots = t.roots;
+    roots.push_back(job.card ? job.card->root : fs::absolute(job.standalone).parent_path());
+    return roots;
+  }
+
   // --fix writes the fixed files (a file that cannot be written keeps its text and its findings), --diff collects
   // the diff.
   void write_fixes(FixRounds& fixed) {
@@ -188,16 +161,21 @@ struct JobRun {
     auto& current = fixed.current;
     auto& display = fixed.display;
     auto& fixed_in = fixed.fixed_in;
-    // Nothing is written outside the linted folder (a card's root, a lone file's folder).
-    const std::optional<fs::path> root =
-        job.card ? std::optional(job.card->root) : std::optional(fs::absolute(job.standalone).parent_path());
+    const std::vector<fs::path> roots = write_roots();
     bool unwritten = false;
     for (const auto& [sd, text] : current) {
       const std::string& before = original[sd];
       if (before == text) continue;
       ++t.fixed_files;
       if (co.diff) {
-        t.diff += unified_diff(before, text, display[sd]);
+        // Once per file: two cards reaching one file through a link would fix it the same way.
+        std::string chunk = unified_diff(before, text, diff_name(reader.disk_path(sd), display[sd]));
+        if (t.diffs.insert(chunk).second) {
+          t.diff += chunk;
+        } else {
+          --t.fixed_files;
+          t.fixed -= std::min(t.fixed, fixed_in[sd]);
+        }
         continue;
       }
       auto disk = reader.disk_path(sd);
@@ -206,7 +184,7 @@ struct JobRun {
         continue;
       }
       std::string err;
-      if (!write_atomic(*disk, before, text, root, &err)) {
+      if (!write_atomic(*disk, before, text, roots, &err)) {
         // The file keeps its text: its fixes are not counted, and its findings are reported as they stand.
         error(fmt::format("{}: {}; its findings are reported as they are", display[sd], err));
         t.io_error = true;
@@ -243,7 +221,7 @@ struct JobRun {
       std::string err;
       if (!disk) {
         t.stdout_text = text;
-      } else if (!write_atomic(*disk, before, text, job.card ? std::optional(job.card->root) : std::nullopt, &err)) {
+      } else if (!write_atomic(*disk, before, text, write_roots(), &err)) {
         error(fmt::format("{}: {}", u.source->display_path(), err));
         t.io_error = true;
         continue;  // not counted: nothing was added to this file
@@ -366,12 +344,9 @@ int report_diff(std::ostream& os, const Totals& t, const CheckOptions& co, bool 
   return t.fixed_files && !co.exit_zero ? kExitFindings : kExitClean;
 }
 
-// A report that could not be written whole (a full disk, a closed output) is an I/O error, never a pass.
+// The report written whole to `os` (stdout, stderr or the -o file)?
 bool written(std::ostream& os, const CheckOptions& co) {
-  if (os.flush()) return true;
-  error(fmt::format("{}: cannot write the report",
-                    co.output_file.empty() ? (&os == &std::cerr ? "stderr" : "stdout") : co.output_file));
-  return false;
+  return flushed(os, co.output_file.empty() ? (&os == &std::cerr ? "stderr" : "stdout") : co.output_file, "the report");
 }
 
 // The findings of every machine, in a stable order across machines (by path, then position), in `format`.
@@ -440,6 +415,7 @@ int run_check(const CliOptions& cli, const CheckOptions& co) {
 
   SourceManager sm;
   Totals t;
+  t.roots = stats.roots;
   if (!run_jobs(jobs, co, settings, gitignore, sm, t)) return kExitError;
   io_error = io_error || t.io_error;
   if (t.lone_hint)

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -33,6 +34,9 @@ constexpr int kExitClean = 0, kExitFindings = 1, kExitError = 2;
 
 void error(const std::string& msg);
 void warning(const std::string& msg);
+/// Flushes `os`: true when all of it was written; otherwise says "NAME: cannot write WHAT" (a full disk, a closed
+/// output) and returns false. Output that did not arrive is an I/O error, never a pass.
+bool flushed(std::ostream& os, std::string_view name, std::string_view what);
 
 /// What the command line says, before any config file is read.
 struct CliOptions {
@@ -123,6 +127,11 @@ struct Job {
   std::shared_ptr<DirCache> dirs;            // the folder listings the plan made, for the card's reader
 };
 
+/// What a job could not lint (unlinted.cc), said as errors: a config.g that cannot be linted, a file named on the
+/// command line that was not linted (not G-code, unreadable). True when one was said (the run exits 2). Sets
+/// `lone_hint` when a lone file other than config.g was linted (a note on how to lint it as one follows the run).
+bool note_unlinted(const Job& job, const Effective& eff, const Machine& m, bool& lone_hint);
+
 struct PlanOptions {
   std::string stdin_filename;
   bool force_exclude = false;
@@ -164,6 +173,8 @@ struct PlanStats {
   size_t force_excluded = 0;       // paths named on the command line and left out by --force-exclude
   size_t named = 0;                // paths named on the command line (stdin included)
   std::vector<std::string> empty;  // paths (as named) under which nothing was found to lint, with the reason
+  std::vector<fs::path> roots;     // what was named: each folder, and each named file's card or folder (absolute,
+                                   // normal): --fix writes through a symbolic link only to a file below one of them
 };
 
 /// Turns command-line paths into jobs, one per machine. Sets `io_error` for unusable paths. `gitignore` keeps
@@ -243,9 +254,10 @@ FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOpt
 /// Writes `bytes` to `path` without ever leaving it half written: a temporary file in the same folder, then a
 /// rename, keeping the file's mode, owner and group. Refuses (returns false with `err`, writing nothing) when the
 /// file changed on disk since `expected` was read, when it is read-only (no write bit) or, without root, not
-/// writable in place, when its owner cannot be kept, and when it is a symbolic link to a file outside `root`.
+/// writable in place, when its owner cannot be kept, and when it is a symbolic link to a file below none of
+/// `roots` (the folders the run linted).
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
-                  const std::optional<fs::path>& root, std::string* err);
+                  const std::vector<fs::path>& roots, std::string* err);
 
 /// Opens `path` for the report (`rrflint check -o`), unless it is one of `inputs`, the files the run read (a linted
 /// file, a macro, a settings file; the same file under any name or link), which the report would replace. False,
@@ -255,6 +267,10 @@ bool open_report_file(const std::string& path, const std::vector<std::string>& i
 
 /// A unified diff (`--- a/x`, `+++ b/x`, 3 lines of context); empty when the texts are equal.
 std::string unified_diff(std::string_view before, std::string_view after, const std::string& path);
+/// The name --diff gives a file on disk (`disk`; nullopt for stdin) shown as `shown`: `shown`, unless the file is
+/// a symbolic link (git apply and patch(1) refuse to patch through one): then the file it leads to, relative to the
+/// current folder, when it lies below it.
+std::string diff_name(const std::optional<std::string>& disk, const std::string& shown);
 
 // ---- check.cc ----
 

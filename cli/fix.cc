@@ -159,23 +159,25 @@ FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOpt
 }
 
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
-                  const std::optional<fs::path>& root, std::string* err) {
+                  const std::vector<fs::path>& roots, std::string* err) {
   auto fail = [&](std::string why) {
     if (err) *err = std::move(why);
     return false;
   };
   std::error_code ec;
   // A symbolic link is written through to its target (the link stays), but never to a target outside the linted
-  // folder: --fix writes nothing outside what was linted.
+  // folders: --fix writes nothing outside what was named on the command line.
   fs::path target = path;
   if (fs::is_symlink(path, ec)) {
     target = fs::canonical(path, ec);
     if (ec) return fail("a symbolic link that leads nowhere: not written");
-    if (root) {
-      const fs::path real_root = fs::canonical(*root, ec);
-      if (ec || !path_below(target.string(), real_root.string()))
-        return fail(fmt::format("a symbolic link to {}, outside the linted folder: not written", target.string()));
-    }
+    const bool inside = std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
+      std::error_code rec;
+      const fs::path real_root = fs::canonical(root, rec);
+      return !rec && path_below(target.string(), real_root.string()).has_value();
+    });
+    if (!inside)
+      return fail(fmt::format("a symbolic link to {}, outside the linted folders: not written", target.string()));
   }
   struct stat st {};
   if (::stat(target.string().c_str(), &st) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
@@ -336,6 +338,15 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
     k = end;
   }
   return out;
+}
+
+std::string diff_name(const std::optional<std::string>& disk, const std::string& shown) {
+  std::error_code ec;
+  if (!disk || !fs::is_symlink(*disk, ec)) return shown;
+  const fs::path real = fs::canonical(*disk, ec);
+  if (ec) return shown;
+  const auto rel = path_below(real.string(), absolute_normal(fs::current_path(ec)));
+  return rel && !ec ? *rel : shown;
 }
 
 bool open_report_file(const std::string& path, const std::vector<std::string>& inputs, std::ofstream& out,

@@ -292,6 +292,12 @@ struct Planner {
 
   // `-`: standard input, as --stdin-filename places it.
   void add_stdin() {
+    if (!po.stdin_filename.empty() && !fs::path(po.stdin_filename).has_filename()) {
+      error(fmt::format("--stdin-filename {}: that names a folder; give the name of a file (sys/config.g)",
+                        po.stdin_filename));
+      io_error = true;
+      return;
+    }
     // Redirected from a large file: mapped, as a large file named on the command line is (no copy).
     std::optional<TextBuffer> mapped = map_standard_input();
     // Otherwise read in blocks: a character at a time through std::cin took half a second for 30 MB.
@@ -423,12 +429,14 @@ struct Planner {
       return;
     }
     if (auto at = folders.place(abs); at.card && at.sd && machine_path(*at.sd)) {
+      stats.roots.emplace_back(absolute_normal(at.card->root));
       Job& j = job_for_card(*at.card, p);
       j.only.insert(to_lower(*at.sd));
       j.named.emplace(to_lower(*at.sd), p);
       j.explicit_path = true;
       return;
     }
+    stats.roots.emplace_back(fs::path(abs).parent_path());
     lone(path, p, true);
   }
 };
@@ -455,6 +463,7 @@ void plan(const std::vector<std::string>& paths, const PlanOptions& po, Settings
     }
     const std::string abs = absolute_normal(path);
     if (fs::is_directory(path, ec)) {
+      stats.roots.emplace_back(abs);
       if (!planner.add_folder(p, path, abs)) return;
       continue;
     }

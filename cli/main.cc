@@ -291,11 +291,7 @@ int run_model(const CliOptions& cli, const std::string& model_path, const std::s
 
 // A subcommand's exit code, or an I/O error (2) when its output could not be written whole to stdout (a full disk):
 // a report that did not arrive is never a pass. (A closed pipe ends the process with SIGPIPE first, as for grep.)
-int written(int rc) {
-  if (rc == kExitError || std::cout.flush()) return rc;
-  error("stdout: cannot write the output");
-  return kExitError;
-}
+int written(int rc) { return rc == kExitError || flushed(std::cout, "stdout", "the output") ? rc : kExitError; }
 
 // `rrflint rule --generate-man FILE --generate-completion FILE` (generate.h): the build runs it.
 int write_generated(const CLI::App& app, const std::string& man_file, const std::string& completion_file) {

@@ -72,6 +72,12 @@ std::string conflicting_options(const CheckOptions& co) {
 void error(const std::string& msg) { std::cerr << "rrflint: error: " << msg << "\n"; }
 void warning(const std::string& msg) { std::cerr << "rrflint: warning: " << msg << "\n"; }
 
+bool flushed(std::ostream& os, std::string_view name, std::string_view what) {
+  if (os.flush()) return true;
+  error(fmt::format("{}: cannot write {}", name, what));
+  return false;
+}
+
 std::shared_ptr<const Config> Settings::config_for(const std::string& dir) {
   if (cli_.isolated) return nullptr;
   // Memoised per folder as spelled (callers pass absolute, normal folders): files share their folders.

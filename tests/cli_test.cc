@@ -76,7 +76,7 @@ TEST_CASE("cli: text output: carets, notes with their own snippet, fix preview, 
   CHECK(contains(o.out, "  RRF101 unknown-command: " + docs_link("unknown-command") + "\n"));
 }
 
-TEST_CASE("text: a note in another file has that file's name and snippet; carets cover the exact range", "[cli]") {
+TEST_CASE("text: a note in another file has that file's name and snippet, carets cover the exact range", "[cli]") {
   SourceManager sm;
   const SourceFile& cfg = sm.add("p/sys/config.g", "/sys/config.g", "M584 X0 Y1 Z2\nT0\tP1 ; select\n");
   const SourceFile& post = sm.add("p/sys/tpost0.g", "/sys/tpost0.g", "; wipe\nG1 X-30 F9000\n");
@@ -419,6 +419,42 @@ TEST_CASE("cli: a symbolic link in sys/ to another card's file is a file of its 
   CHECK_FALSE(contains(o.err, "no SD card around it"));
 }
 
+TEST_CASE("cli: a file two cards share through a symbolic link is fixed once, and --diff names the real file",
+          "[cli][fix]") {
+  // b is named first, so its link is the first way to the file that the run fixes (before this was mended it was
+  // refused as "outside the linted folder", b's card, and --diff gave the file twice, once under the link's name).
+  TempTree t;
+  const std::string card = "M584 X0 Y1 Z2 E3\nM563 P0 D0\nM98 P\"common.g\"\n";
+  t.write("a/sys/config.g", card);
+  t.write("b/sys/config.g", card);
+  t.write("a/sys/common.g", "G10 P0 X1 Y2\n");
+  fs::create_symlink("../../a/sys/common.g", t / "b/sys/common.g");
+  // --diff: one part for the one file, under the name git apply can patch (it will not patch through a link).
+  auto o = run_rrflint(t.root(), "check --select g10-implicit-z --diff b a");
+  CHECK(o.code == 1);
+  CHECK(o.out ==
+        "--- a/a/sys/common.g\n"
+        "+++ b/a/sys/common.g\n"
+        "@@ -1 +1 @@\n"
+        "-G10 P0 X1 Y2\n"
+        "+G10 P0 X1 Y2 Z0\n");
+  CHECK(contains(o.err, "would fix 1 finding in 1 file"));
+  t.write("fix.diff", o.out);
+  REQUIRE(std::system(("cd " + shell_quote(t.root().string()) + " && git apply -p1 --check fix.diff").c_str()) == 0);
+  // --fix: the link leads into a folder named on the command line, so it is written through (the link stays).
+  o = run_rrflint(t.root(), "check --select g10-implicit-z --fix b a");
+  CHECK(o.code == 0);
+  CHECK(t.read("a/sys/common.g") == "G10 P0 X1 Y2 Z0\n");
+  CHECK(fs::is_symlink(t / "b/sys/common.g"));
+  // Named alone, b's link leads out of what was named: refused, and the finding stays reported.
+  t.write("a/sys/common.g", "G10 P0 X1 Y2\n");
+  o = run_rrflint(t.root(), "check --select g10-implicit-z --fix b");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "b/sys/common.g: a symbolic link to "));
+  CHECK(contains(o.err, "outside the linted folders: not written"));
+  CHECK(t.read("a/sys/common.g") == "G10 P0 X1 Y2\n");
+}
+
 TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there is something to fix", "[cli][fix]") {
   TempTree t;
   const std::string before = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\nG1 Y0\n";
@@ -509,7 +545,7 @@ TEST_CASE("cli: stdin with --stdin-filename: placed in its card, config found fr
 }
 
 TEST_CASE(
-    "cli: stdin named as a file not on disk yet is shown where it will be, with its case; a name that is not "
+    "cli: stdin named as a file not on disk yet is shown where it will be, with its case, a name that is not "
     "G-code says why",
     "[cli]") {
   TempTree t;
@@ -536,6 +572,14 @@ TEST_CASE(
     CHECK(o.code == 2);
     CHECK(contains(o.err, "error: " + name + ": not linted: not a G-code file"));
   }
+  // A name that ends at a folder (`/`, `p/sys/`): not linted as a file of that name.
+  for (const std::string name : {"/", "p/sys/"}) {
+    INFO(name);
+    o = run_rrflint(t.root(), "check --stdin-filename " + name + " -", "", text);
+    CHECK(o.code == 2);
+    CHECK(contains(o.err, "error: --stdin-filename " + name + ": that names a folder"));
+    CHECK(o.out.empty());
+  }
 }
 
 TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppress]") {
@@ -559,7 +603,7 @@ TEST_CASE("cli: --no-inline-suppressions and --add-suppressions", "[cli][suppres
   CHECK(run_rrflint(t.root(), "check q --add-suppressions --fix").code == 2);
 }
 
-TEST_CASE("cli: --add-suppressions refuses a reason that would end the comment; the reason keeps a tab",
+TEST_CASE("cli: --add-suppressions refuses a reason that would end the comment, the reason keeps a tab",
           "[cli][suppress]") {
   TempTree t;
   const std::string config = "M584 X0 Y1 Z2\nM9999\n";
@@ -585,7 +629,7 @@ TEST_CASE("cli: --fix on stdin with -o FILE still hands the fixed text back on s
   CHECK(contains(t.read("report.txt"), "Fixed 1 finding."));
 }
 
-TEST_CASE("cli: --diff honours --exit-zero; an empty --select, --firmware or --board is a usage error", "[cli]") {
+TEST_CASE("cli: --diff honours --exit-zero, an empty --select, --firmware or --board is a usage error", "[cli]") {
   TempTree t;
   t.write("p/sys/config.g", "M584 X0 Y1 Z2E3\n");
   CHECK(run_rrflint(t.root(), "check --diff p").code == 1);
@@ -636,7 +680,7 @@ TEST_CASE("cli: model of a folder with no machine, or with several, says so", "[
   CHECK(o.out.starts_with("Machine: s/b\n"));
 }
 
-TEST_CASE("cli: --config names what is wrong with the file; --isolated with --config is a usage error",
+TEST_CASE("cli: --config names what is wrong with the file, --isolated with --config is a usage error",
           "[cli][config]") {
   TempTree t;
   t.write("p/sys/config.g", "M584 X0 Y1 Z2\n");
@@ -654,7 +698,7 @@ TEST_CASE("cli: --config names what is wrong with the file; --isolated with --co
   CHECK(contains(o.err, "--config excludes --isolated"));
 }
 
-TEST_CASE("cli: a card whose every file is excluded says so; named, its file is linted", "[cli][walk]") {
+TEST_CASE("cli: a card whose every file is excluded says so, named, its file is linted", "[cli][walk]") {
   TempTree t;
   t.write("c/sys/config.g", "M584 X0 Y1 Z2E3\n");
   t.write("c/.rrflint.toml", "exclude = [\"sys/config.g\"]\n");
@@ -708,7 +752,7 @@ TEST_CASE("cli: a module folder inside sys/ is walked as part of its card, howev
   }
 }
 
-TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files only with --force-exclude",
+TEST_CASE("cli: .gitignore and exclude are honoured in walks, explicit files only with --force-exclude",
           "[cli][walk]") {
   TempTree t;
   t.write("a/sys/config.g", "M584 X0 Y1 Z2\nM9991\n");
@@ -750,7 +794,7 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks; explicit files onl
 }
 
 TEST_CASE(
-    "cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns; git and the built-in matcher agree",
+    "cli: .gitignore in a sub-folder: negation, anchoring, folder-only patterns, git and the built-in matcher agree",
     "[cli][walk]") {
   TempTree t;
   t.write("sub/.gitignore", "# comment\nkeep/*\n!keep/this.g\n/anch.g\ndironly/\n");
@@ -773,7 +817,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("cli: `rrflint rule` prints the page; --all --format json carries url and fix", "[cli][docs]") {
+TEST_CASE("cli: `rrflint rule` prints the page, --all --format json carries url and fix", "[cli][docs]") {
   TempTree t;
   auto o = run_rrflint(t.root(), "rule RRF900");
   CHECK(o.code == 0);

@@ -161,7 +161,7 @@ namespace {
 const std::string kBad = "M584 X0 Y1 Z2\nM9999\n";  // RRF101 (warning) on line 2
 }
 
-TEST_CASE("cli config: discovered file changes the run; --isolated and --config override", "[config][cli]") {
+TEST_CASE("cli config: discovered file changes the run, --isolated and --config override", "[config][cli]") {
   TempTree t;
   fs::create_directories(t / ".git");
   t.write("printer/sys/config.g", kBad);

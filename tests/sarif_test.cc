@@ -141,7 +141,7 @@ TEST_CASE("sarif: GitHub code scanning's required fields", "[sarif]") {
   CHECK(rep["insertedContent"]["text"] == " Z0");
 }
 
-TEST_CASE("sarif: URIs are relative to the base even from a subfolder; outside it they are file URIs", "[sarif]") {
+TEST_CASE("sarif: URIs are relative to the base even from a subfolder, outside it they are file URIs", "[sarif]") {
   Sample s;
   json doc = sarif_of(s, "/repo", "/repo/configs");
   CHECK(doc["runs"][0]["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"]["uri"] ==
@@ -408,7 +408,7 @@ TEST_CASE("json, json-lines: a large report written in pieces on several threads
   CHECK(none.str().starts_with("{\n  \"diagnostics\": [],\n"));
 }
 
-TEST_CASE("json, json-lines: a fix's text keeps its line endings; invalid UTF-8 becomes U+FFFD", "[json]") {
+TEST_CASE("json, json-lines: a fix's text keeps its line endings, invalid UTF-8 becomes U+FFFD", "[json]") {
   // The replacement of an inserted line (RRF307's M568) used to come out with U+FFFD for its "\n": a tool that
   // applied the JSON's fixes would have joined the lines with garbage. SARIF always kept it.
   Sample s;

@@ -70,7 +70,7 @@ TEST_CASE("server: bad headers are problems and the next message is still read",
   }
 }
 
-TEST_CASE("server: a body that is not JSON is a parse error; a short length resyncs at the next header", "[server]") {
+TEST_CASE("server: a body that is not JSON is a parse error, a short length resyncs at the next header", "[server]") {
   CHECK(read_all(framed("{oops") + kPing) == std::vector<std::string>{"J", "M:ping", "E"});
   // Content-Length 3 bytes short: the body fails, its tail runs into the next header line, which starts afresh.
   const std::string body = R"({"jsonrpc":"2.0","id":1,"method":"a"})";

@@ -123,7 +123,7 @@ TEST_CASE("ranges: own-line disable until enable, or to the end of the file", "[
   CHECK(r->found() == V{"/sys/config.g:1 RRF101", "/sys/config.g:6 RRF101"});
 }
 
-TEST_CASE("enable names the rule it closes; a bare enable closes every range", "[suppress]") {
+TEST_CASE("enable names the rule it closes, a bare enable closes every range", "[suppress]") {
   auto r = lint(
       "; rrflint: disable=unknown-command\n"
       "; rrflint: disable=syntax-error\n"
