@@ -15,7 +15,7 @@ constexpr RuleMeta kMeta{
     .code = "RRF111",
     .name = "command-after-macro-call",
     .severity = Severity::Warning,
-    .fix = FixAvailability::Always,
+    .fix = FixAvailability::Sometimes,
     .summary = "Commands after a command that runs a macro (M98, G28, G29, G32, T) on the same line.",
     .docs = R"md(
 ## What it does
@@ -43,7 +43,8 @@ M116
 
 ## Fix safety
 The fix moves the commands after the macro call to a line of their own, with the same indentation. It is
-unsafe: those commands have not run so far, and will once fixed.
+unsafe: those commands have not run so far, and will once fixed. No fix is offered when they hold a syntax error:
+on a line of their own RRF would read them, and the error would abort the file (RRF100); correct them first.
 
 ## References
 - rrflint: [Several commands on one line](../firmware-behaviour.md#several-commands-on-one-line)
@@ -78,15 +79,17 @@ void check(const FileContext& cx, Sink& out) {
     const uint32_t last = line.first_command + line.command_count - 1;
     const Command& next = pf.commands[i + 1];
     const Span rest{next.span.begin, pf.commands[last].span.end};
-    Fix fix = Fix::unsafe(fmt::format("move '{}' to a line of its own", clip(pf.text(rest), 30)),
-                          Edit::replace(cx.at(Span{c.span.end, next.span.begin}), lex::new_line_after(pf, line)));
     const std::string why = c.letter == 'T'
                                 ? std::string("may not be executed: a 'T' command must be alone on its line")
                                 : fmt::format("is not executed: '{}' runs a macro, and RRF drops the rest of the line",
                                               clip(lex::word(pf, c)));
-    out.report(kMeta, cx.at(rest),
-               fmt::format("'{}' after '{}' on the same line {}", clip(pf.text(rest), 30), clip(lex::word(pf, c)), why))
-        .fix(std::move(fix));
+    auto rep = out.report(
+        kMeta, cx.at(rest),
+        fmt::format("'{}' after '{}' on the same line {}", clip(pf.text(rest), 30), clip(lex::word(pf, c)), why));
+    // Text with a syntax error stays where RRF drops it: on its own line the error would abort the file.
+    if (!pf.any_error_from(rest.begin, std::max(rest.end, line.code.end)))
+      rep.fix(Fix::unsafe(fmt::format("move '{}' to a line of its own", clip(pf.text(rest), 30)),
+                          Edit::replace(cx.at(Span{c.span.end, next.span.begin}), lex::new_line_after(pf, line))));
   }
 }
 

@@ -455,6 +455,29 @@ TEST_CASE("cli: a file two cards share through a symbolic link is fixed once, an
   CHECK(t.read("a/sys/common.g") == "G10 P0 X1 Y2\n");
 }
 
+TEST_CASE("cli: RRF111 moves no text that holds a syntax error to a line of its own", "[cli][fix]") {
+  // Found by fuzz_fix: the text after an M98 was moved out of the reach of the disable-next-line above it, and its
+  // syntax error (which would abort config.g once RRF reads the line) appeared. Unreadable text stays where RRF
+  // drops it; the finding is still reported, without a fix.
+  TempTree t;
+  const std::string before =
+      "M584 X0 Y1 Z2\n; rrflint: disable-next-line = unknown-command, syntax-error\nM98 P\"m.g\" M9command\n"
+      "M98 P\"m.g\" M106 P0 S{1+\nM98 P\"m.g\" M400\n";
+  t.write("p/sys/config.g", before);
+  t.write("p/sys/m.g", "G4 S0\n");
+  auto syntax_errors = [&] {
+    const auto lines = lines_of(run_rrflint(t.root(), "check --select ALL --format concise p").out);
+    return std::count_if(lines.begin(), lines.end(), [](const std::string& l) { return contains(l, "RRF100"); });
+  };
+  const auto was = syntax_errors();
+  auto o = run_rrflint(t.root(), "check --select ALL --format concise --unsafe-fixes --fix p");
+  CHECK(t.read("p/sys/config.g") ==
+        "M584 X0 Y1 Z2\n; rrflint: disable-next-line = unknown-command, syntax-error\nM98 P\"m.g\" M9command\n"
+        "M98 P\"m.g\" M106 P0 S{1+\nM98 P\"m.g\"\nM400\n");
+  CHECK(syntax_errors() == was);
+  CHECK(contains(o.out, "p/sys/config.g:4:12: warning: 'M106 P0 S{1+' after 'M98'"));
+}
+
 TEST_CASE("cli: --diff prints a unified diff, writes nothing, exits 1 when there is something to fix", "[cli][fix]") {
   TempTree t;
   const std::string before = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\nG1 Y0\n";
