@@ -190,7 +190,7 @@ TEST_CASE("cli: colours follow --color, FORCE_COLOR, NO_COLOR and TERM=dumb", "[
     CHECK_FALSE(contains(run_tty("TERM=xterm NO_COLOR=1"), esc));
     CHECK_FALSE(contains(run_tty("TERM=dumb"), esc));
   } else {
-    WARN("SKIPPED: the terminal part of the colour test needs `script` (bsdutils)");
+    RRFLINT_SKIPPED("the terminal part of the colour test needs `script` (bsdutils)");
   }
 }
 
@@ -796,8 +796,14 @@ TEST_CASE("cli: .gitignore and exclude are honoured in walks, explicit files onl
   if (git_available()) {
     REQUIRE(std::system(("git -C " + shell_quote(t.root().string()) + " init -q").c_str()) == 0);
     check_walk("inside a git repository: git check-ignore");
+    // Only git reads .git/info/exclude: a file left out by it shows that git answered (a git that failed would
+    // leave the built-in matcher to answer, and the walk above would pass all the same).
+    t.write(".git/info/exclude", "gitonly.g\n");
+    t.write("a/sys/gitonly.g", "M9995\n");
+    CHECK_FALSE(contains(run_rrflint(t.root(), "check . --format concise").out, "gitonly.g"));
+    fs::remove(t / "a/sys/gitonly.g");
   } else {
-    WARN("SKIPPED: git is not installed; only the built-in .gitignore matcher was tested");
+    RRFLINT_SKIPPED("git is not installed; only the built-in .gitignore matcher was tested");
   }
   auto o = run_rrflint(t.root(), "check old/sys/config.g --format concise");
   CHECK(contains(o.out, "old/sys/config.g:1:1"));  // named explicitly: linted

@@ -16,6 +16,20 @@ namespace rrflint::test {
 
 namespace fs = std::filesystem;
 
+/// Under CI=true (.ci/run on the CI machine, where scripts/setup.sh --test has installed every tool a test needs).
+inline bool in_ci() {
+  const char* ci = std::getenv("CI");
+  return ci && std::string(ci) == "true";
+}
+
+/// A part of a test that cannot run here (a tool, a file or a user missing): a warning on a developer's machine, a
+/// failure under CI=true, where a skip would pass without testing. `msg` is a Catch2 message expression.
+#define RRFLINT_SKIPPED(msg)                                      \
+  do {                                                            \
+    if (::rrflint::test::in_ci()) FAIL_CHECK("NOT RUN: " << msg); \
+    else WARN("SKIPPED: " << msg);                                \
+  } while (0)
+
 /// A scratch folder, removed at the end of the test.
 class TempTree {
  public:

@@ -231,7 +231,20 @@ CaseOptions read_options(const FixtureCase& c, std::vector<std::string>& errors)
     if (f.sd_path == "/sys/config.g") config = &f;
   if (!config) return o;
   std::string_view text = config->original;
-  read_options_line(text.substr(0, split_lines(text).front().second), o, rel(config->disk), errors);
+  const auto lines = split_lines(text);
+  read_options_line(text.substr(0, lines.front().second), o, rel(config->disk), errors);
+  // Options are read from line 1 only: a comment line further down that starts like one would be ignored, and the
+  // case would run with options other than it says.
+  for (size_t i = 1; i < lines.size(); ++i) {
+    std::string_view line = text.substr(lines[i].first, lines[i].second - lines[i].first);
+    line.remove_prefix(std::min(line.size(), line.find_first_not_of(" \t")));
+    if (!line.starts_with(';')) continue;
+    line.remove_prefix(1);
+    line.remove_prefix(std::min(line.size(), line.find_first_not_of(" \t")));
+    if (line.starts_with("rrflint-options:"))
+      errors.push_back(fmt::format("{}:{}: rrflint-options must be on line 1 (here they would be ignored)",
+                                   rel(config->disk), i + 1));
+  }
   return o;
 }
 

@@ -210,12 +210,12 @@ TEST_CASE("gitlab: fingerprints stay unique for files whose paths show alike", "
 TEST_CASE("sarif: valid against the SARIF 2.1.0 schema", "[sarif][schema]") {
   const fs::path schema = fs::path(RRFLINT_SOURCE_DIR) / "../shared/schemas/sarif-schema-2.1.0.json";
   if (!fs::exists(schema)) {
-    WARN("SKIPPED: SARIF schema validation: " << schema.string() << " not found");
+    RRFLINT_SKIPPED("SARIF schema validation: " << schema.string() << " not found");
     return;
   }
   if (std::system("/usr/bin/python3 -c 'import jsonschema' >/dev/null 2>&1") != 0) {
-    WARN(
-        "SKIPPED: SARIF schema validation: /usr/bin/python3 with jsonschema not available "
+    RRFLINT_SKIPPED(
+        "SARIF schema validation: /usr/bin/python3 with jsonschema not available "
         "(scripts/setup.sh --test installs python3-jsonschema)");
     return;
   }
