@@ -26,6 +26,8 @@ command must be on a line of its own.
 ## Why is this bad?
 RRF can put several commands on one line, but a command that runs a macro reuses the line buffer for the
 macro's lines: the rest of the original line is not executed. The commands after it are silently skipped.
+rrflint's machine model skips them too (after `M98`, `G28`, `G29` and `G32`): what they would create or set is not
+there for the other rules.
 
 ## Example
 ```gcode

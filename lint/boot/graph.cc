@@ -268,9 +268,29 @@ const std::vector<uint32_t>& Builder::acting_commands(const FileUnit& u) {
   for (const auto& [letter, number] : {std::pair{'T', -1}, {'M', 98}, {'M', 501}, {'M', 505}})
     for (uint32_t i : pf.with_code(letter, number))
       if (pf.commands.code(i).fraction < 0) out.push_back(i);
+  // G28, G29 and G32 run macros too, and act only on what follows them on their line (drops_rest_of_line).
+  for (const int number : {28, 29, 32})
+    for (uint32_t i : pf.with_code('G', number))
+      if (pf.commands.code(i).fraction < 0 && i + 1 < pf.commands.size() &&
+          pf.commands.code(i + 1).line == pf.commands.code(i).line)
+        out.push_back(i);
   std::sort(out.begin(), out.end());
   return out;
 }
+
+namespace {
+
+// Does RRF drop the rest of the line after this command? A command that runs a macro (M98, and G28, G29, G32 for
+// the homing files, mesh.g and bed.g) hands the line buffer to the macro, so the commands after it on its line
+// never run (docs: "Multiple commands on a single line"; RRF111 reports them). A T's tool-change macros may or
+// may not: its line is left whole.
+bool drops_rest_of_line(const CommandTable::Code& code) {
+  if (code.fraction >= 0) return false;
+  if (code.letter == 'M') return code.number == 98;
+  return code.letter == 'G' && (code.number == 28 || code.number == 29 || code.number == 32);
+}
+
+}  // namespace
 
 void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth) {
   const ParsedFile& pf = u.parsed;
@@ -342,6 +362,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
     return true;
   };
   for (const uint32_t a : acts) {
+    if (a < ci) continue;  // after a macro call on its line: never runs
     if (!push_until(a) || full()) break;
     const CommandTable::Code code = pf.commands.code(a);
     const Stretches::Stretch st = stretches.next(a, a + 1);
@@ -369,7 +390,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
       }
     } else if (code.number == 501) {
       call("config-override.g", CallKind::M501, id, m, depth, true);
-    } else {  // M505
+    } else if (code.letter == 'M' && code.number == 505) {
       auto p = get_string(pf, pf.commands[a], 'P');
       if (p.known() && !m) {
         // Platform::SetSysDir keeps the old folder when "0:" + the new one + "/" does not fit MaxFilenameLength (120):
@@ -377,6 +398,8 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
         if (auto d = resolve_sd_path(sys_dir_, p.value); d && d->size() + 3 <= kMaxFilenameLength) sys_dir_ = *d;
       }
     }
+    if (drops_rest_of_line(code))
+      while (ci < pf.commands.size() && pf.commands.code(ci).line == code.line) ++ci;
   }
   if (!g_.truncated && !full()) push_until(static_cast<uint32_t>(pf.commands.size()));
   assign_until(u, fv, static_cast<uint32_t>(pf.lines.size()));  // the file's globals hold for what runs next
