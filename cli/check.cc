@@ -7,6 +7,7 @@
 #include <exception>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 #include <thread>
 #include <unordered_map>
@@ -29,11 +30,11 @@ struct Totals {
   size_t left_out = 0;  // files of cards linted whole that exclude or .gitignore left out of the report
   bool failing = false, io_error = false;
   std::string diff;
-  std::set<std::string> diffs;             // each file's part of `diff`, to give it once
-  std::optional<std::string> stdout_text;  // fixed or annotated stdin
-  std::vector<MachineTarget> machines;     // each linted machine's firmware target (json)
-  std::vector<std::string> inputs;         // the files on disk this run read: no report may be written over one
-  std::vector<fs::path> roots;             // the folders named (PlanStats::roots), for write_atomic
+  std::map<std::string, std::string> diffs;  // each file's part of `diff`, by its real path, to give it once
+  std::optional<std::string> stdout_text;    // fixed or annotated stdin
+  std::vector<MachineTarget> machines;       // each linted machine's firmware target (json)
+  std::vector<std::string> inputs;           // the files on disk this run read: no report may be written over one
+  std::vector<fs::path> roots;               // the folders named (PlanStats::roots), for write_atomic
 };
 
 // The threads of one run: --jobs, or the default.
@@ -154,6 +155,37 @@ struct JobRun {
     return roots;
   }
 
+  // --diff: a file's part of the diff, as --fix would write it: not for a file --fix would refuse (outside the
+  // linted folders), and once per file however many cards reach it (by its real name).
+  void diff_part(const std::string& sd, const std::string& before, const std::string& text, const std::string& shown,
+                 size_t fixes, const std::vector<fs::path>& roots) {
+    const auto disk = reader.disk_path(sd);
+    auto uncount = [&] {
+      --t.fixed_files;
+      t.fixed -= std::min(t.fixed, fixes);
+    };
+    if (const std::string why = disk ? outside_roots(*disk, roots) : ""; !why.empty()) {
+      error(fmt::format("{}: {}: --fix would not write it, so the diff leaves it out", shown, why));
+      t.io_error = true;
+      return uncount();
+    }
+    const std::string name = diff_name(disk, shown);
+    std::string chunk = unified_diff(before, text, name);
+    std::error_code ec;
+    const fs::path real = disk ? fs::canonical(*disk, ec) : fs::path();
+    const auto [it, fresh] = t.diffs.try_emplace(disk && !ec ? real.string() : name, chunk);
+    if (fresh) {
+      t.diff += chunk;
+      return;
+    }
+    uncount();
+    if (it->second != chunk)
+      warning(
+          fmt::format("{}: two cards fix this file differently; the diff holds the first one's (run --diff "
+                      "again once it is applied)",
+                      name));
+  }
+
   // --fix writes the fixed files (a file that cannot be written keeps its text and its findings), --diff collects
   // the diff.
   void write_fixes(FixRounds& fixed) {
@@ -168,14 +200,7 @@ struct JobRun {
       if (before == text) continue;
       ++t.fixed_files;
       if (co.diff) {
-        // Once per file: two cards reaching one file through a link would fix it the same way.
-        std::string chunk = unified_diff(before, text, diff_name(reader.disk_path(sd), display[sd]));
-        if (t.diffs.insert(chunk).second) {
-          t.diff += chunk;
-        } else {
-          --t.fixed_files;
-          t.fixed -= std::min(t.fixed, fixed_in[sd]);
-        }
+        diff_part(sd, before, text, display[sd], fixed_in[sd], roots);
         continue;
       }
       auto disk = reader.disk_path(sd);

@@ -251,11 +251,14 @@ FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOpt
                          const std::function<void(const std::string& sd_path, const std::string& text)>& set_text,
                          const std::function<MachineResult()>& relint);
 
+/// Why --fix may not write `path` (empty when it may): it is reached through a symbolic link (itself, or a folder on
+/// its way) and the file it leads to lies below none of `roots` (the folders the run linted). `*real`: that file.
+std::string outside_roots(const fs::path& path, const std::vector<fs::path>& roots, fs::path* real = nullptr);
+
 /// Writes `bytes` to `path` without ever leaving it half written: a temporary file in the same folder, then a
 /// rename, keeping the file's mode, owner and group. Refuses (returns false with `err`, writing nothing) when the
 /// file changed on disk since `expected` was read, when it is read-only (no write bit) or, without root, not
-/// writable in place, when its owner cannot be kept, and when it is a symbolic link to a file below none of
-/// `roots` (the folders the run linted).
+/// writable in place, when its owner cannot be kept, and when outside_roots() says so.
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
                   const std::vector<fs::path>& roots, std::string* err);
 
@@ -268,8 +271,8 @@ bool open_report_file(const std::string& path, const std::vector<std::string>& i
 /// A unified diff (`--- a/x`, `+++ b/x`, 3 lines of context); empty when the texts are equal.
 std::string unified_diff(std::string_view before, std::string_view after, const std::string& path);
 /// The name --diff gives a file on disk (`disk`; nullopt for stdin) shown as `shown`: `shown`, unless the file is
-/// a symbolic link (git apply and patch(1) refuse to patch through one): then the file it leads to, relative to the
-/// current folder, when it lies below it.
+/// reached through a symbolic link (itself, or a folder on its way: git apply refuses to patch through one, and one
+/// file could get two names): then the file it leads to, relative to the current folder when it lies below it.
 std::string diff_name(const std::optional<std::string>& disk, const std::string& shown);
 
 // ---- check.cc ----

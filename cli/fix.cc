@@ -158,27 +158,31 @@ FixRounds run_fix_rounds(const SourceManager& sm, MachineResult& r, const FixOpt
   return out;
 }
 
+std::string outside_roots(const fs::path& path, const std::vector<fs::path>& roots, fs::path* real) {
+  std::error_code ec;
+  const bool link = fs::is_symlink(path, ec);
+  const fs::path target = fs::canonical(path, ec);
+  if (ec) return link ? "a symbolic link that leads nowhere" : "";  // a missing file: the caller's stat says so
+  if (real) *real = target;
+  if (target == fs::path(absolute_normal(path))) return "";  // no link on the way
+  for (const fs::path& root : roots) {
+    std::error_code rec;
+    const fs::path real_root = fs::canonical(root, rec);
+    if (!rec && path_below(target.string(), real_root.string())) return "";
+  }
+  return link ? fmt::format("a symbolic link to {}, outside the linted folders", target.string())
+              : fmt::format("reached through a linked folder, it is {}, outside the linted folders", target.string());
+}
+
 bool write_atomic(const fs::path& path, const std::string& expected, const std::string& bytes,
                   const std::vector<fs::path>& roots, std::string* err) {
   auto fail = [&](std::string why) {
     if (err) *err = std::move(why);
     return false;
   };
-  std::error_code ec;
-  // A symbolic link is written through to its target (the link stays), but never to a target outside the linted
-  // folders: --fix writes nothing outside what was named on the command line.
+  // A file reached through a symbolic link is written through it (the link stays), but only below the linted folders.
   fs::path target = path;
-  if (fs::is_symlink(path, ec)) {
-    target = fs::canonical(path, ec);
-    if (ec) return fail("a symbolic link that leads nowhere: not written");
-    const bool inside = std::any_of(roots.begin(), roots.end(), [&](const fs::path& root) {
-      std::error_code rec;
-      const fs::path real_root = fs::canonical(root, rec);
-      return !rec && path_below(target.string(), real_root.string()).has_value();
-    });
-    if (!inside)
-      return fail(fmt::format("a symbolic link to {}, outside the linted folders: not written", target.string()));
-  }
+  if (std::string why = outside_roots(path, roots, &target); !why.empty()) return fail(why + ": not written");
   struct stat st {};
   if (::stat(target.string().c_str(), &st) != 0) return fail(fmt::format("cannot write: {}", std::strerror(errno)));
   if (!S_ISREG(st.st_mode)) return fail("not a regular file: not written");
@@ -342,11 +346,11 @@ std::string unified_diff(std::string_view before, std::string_view after, const 
 
 std::string diff_name(const std::optional<std::string>& disk, const std::string& shown) {
   std::error_code ec;
-  if (!disk || !fs::is_symlink(*disk, ec)) return shown;
+  if (!disk) return shown;
   const fs::path real = fs::canonical(*disk, ec);
-  if (ec) return shown;
+  if (ec || real == fs::path(absolute_normal(*disk))) return shown;  // no link on the way
   const auto rel = path_below(real.string(), absolute_normal(fs::current_path(ec)));
-  return rel && !ec ? *rel : shown;
+  return rel && !ec ? *rel : real.string();
 }
 
 bool open_report_file(const std::string& path, const std::vector<std::string>& inputs, std::ofstream& out,

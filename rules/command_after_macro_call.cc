@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "lint/boot/commands.h"
 #include "lint/engine/rule.h"
 #include "rules/lex_common.h"
 
@@ -19,15 +20,16 @@ constexpr RuleMeta kMeta{
     .summary = "Commands after a command that runs a macro (M98, G28, G29, G32, T) on the same line.",
     .docs = R"md(
 ## What it does
-Reports a line that has more commands after `M98`, `G28`, `G29`, `G32` or a `T` tool selection. These commands
-run macro files (the called file, the homing files, `mesh.g`, `bed.g`, the tool-change files), and a `T`
-command must be on a line of its own.
+Reports a line that has more commands after `M98`, `G28`, `G29` (without `S`), `G32` or a `T` tool selection.
+These commands run macro files (the called file, the homing files, `mesh.g`, `bed.g`, the tool-change files), and
+a `T` command must be on a line of its own. `G29 S1`, `S2` and `S3` load, clear or save the height map and run no
+macro: the rest of their line runs.
 
 ## Why is this bad?
 RRF can put several commands on one line, but a command that runs a macro reuses the line buffer for the
 macro's lines: the rest of the original line is not executed. The commands after it are silently skipped.
-rrflint's machine model skips them too (after `M98`, `G28`, `G29` and `G32`): what they would create or set is not
-there for the other rules.
+rrflint's machine model skips them too (after all of these but `T`): what they would create or set is not there
+for the other rules.
 
 ## Example
 ```gcode
@@ -55,13 +57,6 @@ on a line of their own RRF would read them, and the error would abort the file (
 )md",
 };
 
-bool runs_macro(const Command& c) {
-  if (c.letter == 'T') return true;
-  if (c.fraction >= 0) return false;
-  if (c.letter == 'M') return c.number == 98;
-  return c.letter == 'G' && (c.number == 28 || c.number == 29 || c.number == 32);
-}
-
 void check(const FileContext& cx, Sink& out) {
   const ParsedFile& pf = cx.parsed();
   // The commands that run a macro and have another command after them on their line, in file order.
@@ -69,7 +64,8 @@ void check(const FileContext& cx, Sink& out) {
   constexpr std::pair<char, int> kMacroCodes[] = {{'T', -1}, {'M', 98}, {'G', 28}, {'G', 29}, {'G', 32}};
   for (const auto& [letter, number] : kMacroCodes)
     for (const uint32_t i : pf.with_code(letter, number))
-      if (i + 1 < pf.commands.size() && pf.commands[i + 1].line == pf.commands[i].line && runs_macro(pf.commands[i]))
+      if (i + 1 < pf.commands.size() && pf.commands[i + 1].line == pf.commands[i].line &&
+          (letter == 'T' || drops_rest_of_line(pf, pf.commands[i])))
         found.push_back(i);
   std::sort(found.begin(), found.end());
   uint32_t done_line = UINT32_MAX;

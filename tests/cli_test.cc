@@ -455,6 +455,48 @@ TEST_CASE("cli: a file two cards share through a symbolic link is fixed once, an
   CHECK(t.read("a/sys/common.g") == "G10 P0 X1 Y2\n");
 }
 
+TEST_CASE("cli: --fix and --diff never write through a linked folder to outside what was named", "[cli][fix]") {
+  // A linked folder on the way (here sys/lib) was not checked: only a link as the file itself was, so `--fix b`
+  // rewrote a file outside b, and --diff showed it.
+  TempTree t;
+  const std::string unused = "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n";
+  t.write("outside/lib/x.g", unused);
+  t.write("b/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"lib/x.g\"\n");
+  fs::create_directory_symlink("../../outside/lib", t / "b/sys/lib");
+  auto o = run_rrflint(t.root(), "check --fix b");
+  CHECK(o.code == 2);
+  CHECK(contains(o.err, "b/sys/lib/x.g: reached through a linked folder"));
+  CHECK(t.read("outside/lib/x.g") == unused);
+  o = run_rrflint(t.root(), "check --diff b");
+  CHECK(o.code == 2);
+  CHECK(o.out.empty());
+  CHECK(contains(o.err, "--fix would not write it"));
+  // Named, the folder the link leads into may be written; the diff names the file where it is.
+  o = run_rrflint(t.root(), "check --diff b outside");
+  CHECK(o.code == 1);
+  CHECK(o.out.starts_with("--- a/outside/lib/x.g\n+++ b/outside/lib/x.g\n"));
+  CHECK(contains(o.err, "would fix 1 finding in 1 file"));
+  CHECK(run_rrflint(t.root(), "check --fix b outside").code == 0);
+  CHECK(t.read("outside/lib/x.g") == "M584 X0 Y1 Z2\nG1 X0\n");
+}
+
+TEST_CASE("cli: --diff over a linked card folder gives each file once, by the name git apply can patch", "[cli][fix]") {
+  TempTree t;
+  t.write("t1/a/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"common.g\"\n");
+  t.write("t1/b/sys/config.g", "M584 X0 Y1 Z2\nM98 P\"common.g\"\n");
+  t.write("t1/a/sys/common.g", "M584 X0 Y1 Z2\nG1 X0 ; rrflint: disable=unknown-command\n");
+  fs::create_symlink("../../a/sys/common.g", t / "t1/b/sys/common.g");
+  fs::create_directory_symlink("t1", t / "L");
+  const auto o = run_rrflint(t.root(), "check --diff L");
+  CHECK(o.code == 1);
+  CHECK(o.out ==
+        "--- a/t1/a/sys/common.g\n+++ b/t1/a/sys/common.g\n@@ -1,2 +1,2 @@\n M584 X0 Y1 Z2\n"
+        "-G1 X0 ; rrflint: disable=unknown-command\n+G1 X0\n");
+  CHECK(contains(o.err, "would fix 1 finding in 1 file"));
+  t.write("fix.diff", o.out);
+  CHECK(std::system(("cd " + shell_quote(t.root().string()) + " && git apply -p1 --check fix.diff").c_str()) == 0);
+}
+
 TEST_CASE("cli: RRF111 moves no text that holds a syntax error to a line of its own", "[cli][fix]") {
   // Found by fuzz_fix: the text after an M98 was moved out of the reach of the disable-next-line above it, and its
   // syntax error (which would abort config.g once RRF reads the line) appeared. Unreadable text stays where RRF

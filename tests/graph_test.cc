@@ -223,16 +223,18 @@ TEST_CASE("graph: T runs tfree, tpre, tpost unless P says otherwise", "[graph]")
         "T{global.t} ?=T? <");
 }
 
-TEST_CASE("graph: what follows M98, G28, G29 or G32 on its line never runs, what follows a T does", "[graph]") {
+TEST_CASE("graph: what follows M98, G28, G29 (no S) or G32 on its line never runs, what follows a T does", "[graph]") {
   // RRF hands the line buffer to the macro: the rest of the line is dropped (RRF111 reports it). Not modelled, the
   // M106 would have raised fan-before-creation, and an M584 would have created axes that never exist.
   auto b = build({
       {"/sys/config.g",
-       "M98 P\"a.g\" M584 X0 M98 P\"a.g\"\nG28 M106 P0 S0\nG29 S1 M83\nG32 M82\nG28.1 M84\nT-1 M116\nM98 P\"a.g\"\n"},
+       "M98 P\"a.g\" M584 X0 M98 P\"a.g\"\nG28 M106 P0 S0\nG29 M83\nG29 S1 M83\nG32 M82\nG28.1 M84\nT-1 M116\n"
+       "M98 P\"a.g\"\n"},
       {"/sys/a.g", "G4 S0\n"},
   });
-  CHECK(boot(*b) ==
-        ">/sys/config.g(boot) M98 >/sys/a.g(M98) G4 < G28 G29 G32 G28.1 M84 T-1 M116 M98 >/sys/a.g(M98) G4 < <");
+  CHECK(
+      boot(*b) ==
+      ">/sys/config.g(boot) M98 >/sys/a.g(M98) G4 < G28 G29 G29 M83 G32 G28.1 M84 T-1 M116 M98 >/sys/a.g(M98) G4 < <");
 }
 
 TEST_CASE("graph: generic tpre.g/tpost.g/tfree.g only from 3.5", "[graph]") {

@@ -153,6 +153,13 @@ bool homing_name(std::string_view name) {
 
 }  // namespace
 
+bool drops_rest_of_line(const ParsedFile& pf, const Command& c) {
+  if (c.fraction >= 0) return false;
+  if (c.letter == 'M') return c.number == 98;
+  if (c.letter != 'G') return false;
+  return c.number == 28 || c.number == 32 || (c.number == 29 && pf.find(c, 'S') == nullptr);
+}
+
 FileRole file_role(std::string_view sd_path, int* tool) {
   const size_t slash = sd_path.rfind('/');
   const std::string name = to_lower(sd_path.substr(slash == std::string_view::npos ? 0 : slash + 1));

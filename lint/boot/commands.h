@@ -157,6 +157,12 @@ enum class FileRole : uint8_t {
   RunOnce,            // runonce.g, run once after config.g, then deleted
 };
 
+/// Does RRF drop the rest of this command's line? A command that runs a macro hands the line buffer to it, so the
+/// commands after it on its line never run (docs: "Multiple commands on a single line"): M98; G28 (the homing
+/// files); G32 (bed.g); G29 with no S (mesh.g; GCodes2.cpp case 29: S1, S2, S3 load, clear or save the height map
+/// and run no macro). Not a T: its tool-change macros may or may not run, and RRF111 says so apart.
+bool drops_rest_of_line(const ParsedFile& pf, const Command& c);
+
 /// The role of the file at `sd_path` (any folder; the name is compared without case). For tool-change macros,
 /// `*tool` is set to n, or -1 for the generic tfree.g / tpre.g / tpost.g.
 FileRole file_role(std::string_view sd_path, int* tool = nullptr);

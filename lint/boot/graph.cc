@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "lint/boot/commands.h"
 #include "lint/boot/const_eval.h"
 #include "lint/boot/stretches.h"
 
@@ -268,7 +269,7 @@ const std::vector<uint32_t>& Builder::acting_commands(const FileUnit& u) {
   for (const auto& [letter, number] : {std::pair{'T', -1}, {'M', 98}, {'M', 501}, {'M', 505}})
     for (uint32_t i : pf.with_code(letter, number))
       if (pf.commands.code(i).fraction < 0) out.push_back(i);
-  // G28, G29 and G32 run macros too, and act only on what follows them on their line (drops_rest_of_line).
+  // G28, G29 and G32 may run macros too, and act only on what follows them on their line (drops_rest_of_line).
   for (const int number : {28, 29, 32})
     for (uint32_t i : pf.with_code('G', number))
       if (pf.commands.code(i).fraction < 0 && i + 1 < pf.commands.size() &&
@@ -277,20 +278,6 @@ const std::vector<uint32_t>& Builder::acting_commands(const FileUnit& u) {
   std::sort(out.begin(), out.end());
   return out;
 }
-
-namespace {
-
-// Does RRF drop the rest of the line after this command? A command that runs a macro (M98, and G28, G29, G32 for
-// the homing files, mesh.g and bed.g) hands the line buffer to the macro, so the commands after it on its line
-// never run (docs: "Multiple commands on a single line"; RRF111 reports them). A T's tool-change macros may or
-// may not: its line is left whole.
-bool drops_rest_of_line(const CommandTable::Code& code) {
-  if (code.fraction >= 0) return false;
-  if (code.letter == 'M') return code.number == 98;
-  return code.letter == 'G' && (code.number == 28 || code.number == 29 || code.number == 32);
-}
-
-}  // namespace
 
 void Builder::tool_change(const FileUnit& u, const Command& c, NodeId site, bool maybe, uint16_t depth) {
   const ParsedFile& pf = u.parsed;
@@ -398,7 +385,7 @@ void Builder::run_file(const FileUnit& u, CallKind call_kind, NodeId call_site, 
         if (auto d = resolve_sd_path(sys_dir_, p.value); d && d->size() + 3 <= kMaxFilenameLength) sys_dir_ = *d;
       }
     }
-    if (drops_rest_of_line(code))
+    if (drops_rest_of_line(pf, pf.commands[a]))
       while (ci < pf.commands.size() && pf.commands.code(ci).line == code.line) ++ci;
   }
   if (!g_.truncated && !full()) push_until(static_cast<uint32_t>(pf.commands.size()));
