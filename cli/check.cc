@@ -164,16 +164,15 @@ struct JobRun {
       --t.fixed_files;
       t.fixed -= std::min(t.fixed, fixes);
     };
-    if (const std::string why = disk ? outside_roots(*disk, roots) : ""; !why.empty()) {
+    fs::path real;  // the file itself, when it can be resolved: the key that gives it once
+    if (const std::string why = disk ? outside_roots(*disk, roots, &real) : ""; !why.empty()) {
       error(fmt::format("{}: {}: --fix would not write it, so the diff leaves it out", shown, why));
       t.io_error = true;
       return uncount();
     }
     const std::string name = diff_name(disk, shown);
     std::string chunk = unified_diff(before, text, name);
-    std::error_code ec;
-    const fs::path real = disk ? fs::canonical(*disk, ec) : fs::path();
-    const auto [it, fresh] = t.diffs.try_emplace(disk && !ec ? real.string() : name, chunk);
+    const auto [it, fresh] = t.diffs.try_emplace(real.empty() ? name : real.string(), chunk);
     if (fresh) {
       t.diff += chunk;
       return;
